@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages the build and the tests need, only when some are missing.
+set -euo pipefail
+pkgs=(build-essential cmake pkg-config libeigen3-dev libtbb-dev libyaml-cpp-dev libspdlog-dev
+      libcli11-dev libnanoflann-dev robin-map-dev libembree-dev libgtest-dev libgmock-dev
+      libbenchmark-dev libpng-dev)
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "Installing: ${missing[*]}"
+  sudo=""; [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
