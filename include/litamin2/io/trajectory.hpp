@@ -1,0 +1,39 @@
+#pragma once
+/// Trajectory files: KITTI odometry poses (12 numbers per line) and TUM (t x y z qx qy qz qw).
+
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+namespace litamin2::io {
+
+/// A pose with a timestamp (seconds).
+struct TimedPose {
+  /// Timestamp in seconds.
+  double time = 0;
+  /// Pose (sensor to world).
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+};
+
+/// Reads a KITTI pose file: one line per frame holding the row-major 3x4 matrix [R|t] as 12
+/// numbers. CRLF line ends and trailing blank lines are accepted; the matrix is taken as is (not
+/// re-orthonormalised). Throws IoError naming the file and the 1-based line number for a line
+/// with the wrong number of values, a non-number or a blank line followed by more data, and
+/// IoError for a missing/unreadable file.
+std::vector<Eigen::Isometry3d> read_kitti_poses(const std::string& path);
+
+/// Writes a KITTI pose file (12 values per line, "%.16e", i.e. lossless double precision, LF line
+/// ends). Throws IoError if the file cannot be written.
+void write_kitti_poses(const std::string& path, const std::vector<Eigen::Isometry3d>& poses);
+
+/// Reads a TUM trajectory: "t x y z qx qy qz qw" per line; lines starting with '#' and blank lines
+/// are skipped, CRLF accepted. Quaternions are normalised; a zero or non-finite quaternion, a line
+/// with a count other than 8 or a non-number throws IoError naming file and line number.
+std::vector<TimedPose> read_tum(const std::string& path);
+
+/// Writes a TUM trajectory ("%.17g" time, "%.16e" values: lossless). The quaternion written is the
+/// one of the pose's rotation part (normalised, qw >= 0). Throws IoError if the file cannot be
+/// written.
+void write_tum(const std::string& path, const std::vector<TimedPose>& poses);
+
+}  // namespace litamin2::io

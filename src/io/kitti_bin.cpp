@@ -1,0 +1,146 @@
+#include "litamin2/io/kitti_bin.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "litamin2/io/file_util.hpp"
+#include "litamin2/io/io_error.hpp"
+
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
+#error "litamin2::io reads and writes little-endian binary files and assumes a little-endian host"
+#endif
+
+namespace litamin2::io {
+
+namespace {
+
+/// Reads float number `index` of the byte buffer (no alignment requirement).
+float float_at(const std::string& bytes, std::size_t index) {
+  float value;
+  std::memcpy(&value, bytes.data() + index * sizeof(float), sizeof(float));
+  return value;
+}
+
+bool finite3(float x, float y, float z) {
+  return std::isfinite(x) && std::isfinite(y) && std::isfinite(z);
+}
+
+/// Fraction of records that are implausible under a layout with `stride` floats per record.
+double bad_fraction(const std::string& bytes, std::size_t stride) {
+  const std::size_t n = bytes.size() / (stride * sizeof(float));
+  if (n == 0) return 0.0;
+  std::size_t bad = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t b = i * stride;
+    bool ok = finite3(float_at(bytes, b), float_at(bytes, b + 1), float_at(bytes, b + 2));
+    if (stride == 4) {
+      const float intensity = float_at(bytes, b + 3);
+      ok = ok && intensity >= 0.0f && intensity < 256.0f;  // false for NaN as well
+    }
+    if (!ok) ++bad;
+  }
+  return static_cast<double>(bad) / static_cast<double>(n);
+}
+
+/// Median distance between consecutive finite points under a layout (infinity if undefined).
+double median_step(const std::string& bytes, std::size_t stride) {
+  const std::size_t n = bytes.size() / (stride * sizeof(float));
+  std::vector<double> steps;
+  steps.reserve(n);
+  bool have_prev = false;
+  Eigen::Vector3d prev;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t b = i * stride;
+    const Eigen::Vector3d p(float_at(bytes, b), float_at(bytes, b + 1), float_at(bytes, b + 2));
+    if (!p.allFinite()) continue;
+    if (have_prev) steps.push_back((p - prev).norm());
+    prev = p;
+    have_prev = true;
+  }
+  if (steps.empty()) return std::numeric_limits<double>::infinity();
+  auto mid = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
+  std::nth_element(steps.begin(), mid, steps.end());
+  return *mid;
+}
+
+KittiBinLayout detect_layout(const std::string& path, const std::string& bytes) {
+  const std::size_t size = bytes.size();
+  const bool fits_xyzi = size % 16 == 0;
+  const bool fits_xyz = size % 12 == 0;
+  if (fits_xyzi && !fits_xyz) return KittiBinLayout::XYZI;
+  if (fits_xyz && !fits_xyzi) return KittiBinLayout::XYZ;
+  if (!fits_xyz && !fits_xyzi) {
+    throw IoError(path, "size " + std::to_string(size) +
+                            " bytes is a multiple of neither 16 (x,y,z,intensity float32) nor 12 "
+                            "(x,y,z float32); truncated or not a KITTI .bin scan");
+  }
+  const double bad_xyzi = bad_fraction(bytes, 4);
+  const double bad_xyz = bad_fraction(bytes, 3);
+  if (bad_xyzi < bad_xyz) return KittiBinLayout::XYZI;
+  if (bad_xyz < bad_xyzi) return KittiBinLayout::XYZ;
+  return median_step(bytes, 3) < median_step(bytes, 4) ? KittiBinLayout::XYZ : KittiBinLayout::XYZI;
+}
+
+}  // namespace
+
+void apply_vertical_angle_correction(PointCloud& cloud, double angle_deg) {
+  if (angle_deg == 0.0) return;
+  const double angle = angle_deg * (3.14159265358979323846 / 180.0);
+  for (Eigen::Vector3f& point : cloud.points) {
+    const Eigen::Vector3d pt = point.cast<double>();
+    // Exactly KISS-ICP's CorrectKITTIScan with a configurable angle.
+    const Eigen::Vector3d rotation_vector = pt.cross(Eigen::Vector3d(0., 0., 1.));
+    const double axis_norm = rotation_vector.norm();
+    if (!(axis_norm > 0.0)) continue;  // on the z axis: no defined tilt direction
+    point = (Eigen::AngleAxisd(angle, rotation_vector / axis_norm) * pt).cast<float>();
+  }
+}
+
+PointCloud read_kitti_bin(const std::string& path, const KittiBinOptions& options) {
+  const std::string bytes = read_file_bytes(path);
+  KittiBinLayout layout = options.layout;
+  if (layout == KittiBinLayout::Auto) layout = detect_layout(path, bytes);
+  const std::size_t stride = layout == KittiBinLayout::XYZI ? 4 : 3;
+  const std::size_t record = stride * sizeof(float);
+  if (bytes.size() % record != 0) {
+    throw IoError(path, "size " + std::to_string(bytes.size()) + " bytes is not a multiple of " +
+                            std::to_string(record) +
+                            (stride == 4 ? " (x,y,z,intensity float32)" : " (x,y,z float32)"));
+  }
+  const std::size_t n = bytes.size() / record;
+  PointCloud cloud;
+  cloud.points.reserve(n);
+  if (stride == 4) cloud.intensities.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t b = i * stride;
+    const Eigen::Vector3f p(float_at(bytes, b), float_at(bytes, b + 1), float_at(bytes, b + 2));
+    if (!p.allFinite()) continue;
+    cloud.points.push_back(p);
+    if (stride == 4) cloud.intensities.push_back(float_at(bytes, b + 3));
+  }
+  apply_vertical_angle_correction(cloud, options.vertical_angle_correction_deg);
+  return cloud;
+}
+
+void write_kitti_bin(const std::string& path, const PointCloud& cloud) {
+  if (cloud.has_intensities() && cloud.intensities.size() != cloud.points.size()) {
+    throw std::invalid_argument(
+        "write_kitti_bin(" + path + "): " + std::to_string(cloud.intensities.size()) +
+        " intensities for " + std::to_string(cloud.points.size()) + " points");
+  }
+  std::vector<float> data;
+  data.reserve(cloud.points.size() * 4);
+  for (std::size_t i = 0; i < cloud.points.size(); ++i) {
+    const Eigen::Vector3f& p = cloud.points[i];
+    data.insert(data.end(),
+                {p.x(), p.y(), p.z(), cloud.has_intensities() ? cloud.intensities[i] : 0.0f});
+  }
+  write_file_bytes(path, data.data(), data.size() * sizeof(float));
+}
+
+}  // namespace litamin2::io

@@ -1,0 +1,340 @@
+#include "litamin2/io/pcd.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <cstring>
+#include <optional>
+#include <stdexcept>
+#include <string_view>
+#include <vector>
+
+#include "litamin2/io/file_util.hpp"
+#include "litamin2/io/io_error.hpp"
+
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
+#error "litamin2::io reads and writes little-endian binary files and assumes a little-endian host"
+#endif
+
+namespace litamin2::io {
+
+namespace {
+
+struct Field {
+  std::string name;
+  std::size_t size = 4;
+  char type = 'F';
+  std::size_t count = 1;
+  std::size_t offset = 0;  ///< byte offset in a binary record
+  std::size_t column = 0;  ///< first token index in an ASCII line
+};
+
+struct Header {
+  std::vector<Field> fields;
+  std::size_t width = 0;
+  std::size_t height = 1;
+  std::optional<std::size_t> points;
+  std::string data;
+  std::size_t data_offset = 0;  ///< first byte after the DATA line
+  std::size_t record_size = 0;
+  std::size_t tokens_per_point = 0;
+};
+
+std::string upper(std::string_view s) {
+  std::string out(s);
+  for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return out;
+}
+
+std::size_t parse_count(const std::string& path, std::size_t line_no, std::string_view key,
+                        std::string_view token) {
+  const auto value = parse_unsigned(token);
+  if (!value) {
+    const std::string where =
+        line_no > 0 ? "header line " + std::to_string(line_no) + ": " : std::string("header: ");
+    throw IoError(path, where + std::string(key) + " value '" + std::string(token) +
+                            "' is not a non-negative integer");
+  }
+  return static_cast<std::size_t>(*value);
+}
+
+Header parse_header(const std::string& path, const std::string& bytes) {
+  Header header;
+  std::vector<std::string_view> sizes, types, counts;
+  bool have_fields = false, have_width = false;
+  std::size_t pos = 0;
+  std::size_t line_no = 0;
+  while (true) {
+    if (pos >= bytes.size()) {
+      throw IoError(path, "no DATA line: not a PCD file, or its header is truncated");
+    }
+    std::size_t end = bytes.find('\n', pos);
+    const bool last = end == std::string::npos;
+    if (last) end = bytes.size();
+    std::string_view line(bytes.data() + pos, end - pos);
+    pos = last ? bytes.size() : end + 1;
+    ++line_no;
+    const std::size_t hash = line.find('#');
+    if (hash != std::string_view::npos) line = line.substr(0, hash);
+    const auto tokens = split_whitespace(line);
+    if (tokens.empty()) continue;
+    const std::string key = upper(tokens[0]);
+    const std::vector<std::string_view> values(tokens.begin() + 1, tokens.end());
+    const std::string where = "header line " + std::to_string(line_no) + ": ";
+    if (key == "VERSION" || key == "VIEWPOINT") {
+      continue;
+    } else if (key == "FIELDS" || key == "COLUMNS") {
+      header.fields.clear();
+      for (auto name : values) header.fields.push_back(Field{std::string(name)});
+      have_fields = true;
+    } else if (key == "SIZE") {
+      sizes = values;
+    } else if (key == "TYPE") {
+      types = values;
+    } else if (key == "COUNT") {
+      counts = values;
+    } else if (key == "WIDTH") {
+      if (values.size() != 1) throw IoError(path, where + "WIDTH needs one value");
+      header.width = parse_count(path, line_no, key, values[0]);
+      have_width = true;
+    } else if (key == "HEIGHT") {
+      if (values.size() != 1) throw IoError(path, where + "HEIGHT needs one value");
+      header.height = parse_count(path, line_no, key, values[0]);
+    } else if (key == "POINTS") {
+      if (values.size() != 1) throw IoError(path, where + "POINTS needs one value");
+      header.points = parse_count(path, line_no, key, values[0]);
+    } else if (key == "DATA") {
+      if (values.size() != 1) throw IoError(path, where + "DATA needs one value");
+      header.data = std::string(values[0]);
+      header.data_offset = pos;
+      break;
+    } else {
+      throw IoError(path, where + "unexpected header entry '" + std::string(tokens[0]) +
+                              "' (not a PCD file?)");
+    }
+  }
+
+  if (header.data == "binary_compressed") {
+    throw IoError(path,
+                  "DATA binary_compressed is not supported (only ascii and binary); convert it, "
+                  "e.g. with pcl_convert_pcd_ascii_binary <in> <out> 1");
+  }
+  if (header.data != "ascii" && header.data != "binary") {
+    throw IoError(path, "unknown DATA type '" + header.data + "' (expected ascii or binary)");
+  }
+  if (!have_fields || header.fields.empty()) throw IoError(path, "header has no FIELDS line");
+  if (!have_width) throw IoError(path, "header has no WIDTH line");
+  const std::size_t n_fields = header.fields.size();
+  auto check_len = [&](const std::vector<std::string_view>& v, const char* key, bool required) {
+    if (v.empty() && !required) return;
+    if (v.size() != n_fields) {
+      throw IoError(path, std::string(key) + " has " + std::to_string(v.size()) +
+                              " entries but FIELDS has " + std::to_string(n_fields));
+    }
+  };
+  check_len(sizes, "SIZE", true);
+  check_len(types, "TYPE", true);
+  check_len(counts, "COUNT", false);
+
+  constexpr std::size_t kMaxRecord = std::size_t{1} << 20;
+  for (std::size_t i = 0; i < n_fields; ++i) {
+    Field& f = header.fields[i];
+    f.size = parse_count(path, 0, "SIZE", sizes[i]);
+    const std::string type = upper(types[i]);
+    if (type.size() != 1 || (type[0] != 'F' && type[0] != 'U' && type[0] != 'I')) {
+      throw IoError(path, "field '" + f.name + "' has unknown TYPE '" + std::string(types[i]) +
+                              "' (expected F, U or I)");
+    }
+    f.type = type[0];
+    if (f.size != 1 && f.size != 2 && f.size != 4 && f.size != 8) {
+      throw IoError(path, "field '" + f.name + "' has invalid SIZE " + std::to_string(f.size));
+    }
+    if (f.type == 'F' && f.size != 4 && f.size != 8) {
+      throw IoError(path, "field '" + f.name + "' has TYPE F with SIZE " + std::to_string(f.size) +
+                              " (expected 4 or 8)");
+    }
+    f.count = counts.empty() ? 1 : parse_count(path, 0, "COUNT", counts[i]);
+    if (f.count == 0 || f.count > kMaxRecord) {
+      throw IoError(path, "field '" + f.name + "' has invalid COUNT " + std::to_string(f.count));
+    }
+    f.offset = header.record_size;
+    f.column = header.tokens_per_point;
+    header.record_size += f.size * f.count;
+    header.tokens_per_point += f.count;
+    if (header.record_size > kMaxRecord) throw IoError(path, "point record size is implausible");
+  }
+
+  const std::size_t max_dim = std::size_t{1} << 31;
+  if (header.width > max_dim || header.height > max_dim) {
+    throw IoError(path, "WIDTH/HEIGHT are implausibly large");
+  }
+  const std::size_t wh = header.width * header.height;
+  if (!header.points) header.points = wh;
+  if (*header.points != wh) {
+    throw IoError(path, "WIDTH*HEIGHT = " + std::to_string(header.width) + "*" +
+                            std::to_string(header.height) + " = " + std::to_string(wh) +
+                            " but POINTS = " + std::to_string(*header.points));
+  }
+  return header;
+}
+
+const Field* find_field(const std::string& path, const Header& header, const std::string& name,
+                        bool required) {
+  for (const Field& f : header.fields) {
+    if (f.name != name) continue;
+    if (f.count != 1) {
+      throw IoError(path,
+                    "field '" + name + "' has COUNT " + std::to_string(f.count) + ", expected 1");
+    }
+    return &f;
+  }
+  if (required) throw IoError(path, "required field '" + name + "' is missing from FIELDS");
+  return nullptr;
+}
+
+template <typename T>
+double load(const char* p) {
+  T value;
+  std::memcpy(&value, p, sizeof(T));
+  return static_cast<double>(value);
+}
+
+/// Decodes one binary value of a field at `p`.
+double decode(const Field& f, const char* p) {
+  switch (f.type) {
+    case 'F':
+      return f.size == 4 ? load<float>(p) : load<double>(p);
+    case 'U':
+      switch (f.size) {
+        case 1:
+          return load<std::uint8_t>(p);
+        case 2:
+          return load<std::uint16_t>(p);
+        case 4:
+          return load<std::uint32_t>(p);
+        default:
+          return load<std::uint64_t>(p);
+      }
+    default:
+      switch (f.size) {
+        case 1:
+          return load<std::int8_t>(p);
+        case 2:
+          return load<std::int16_t>(p);
+        case 4:
+          return load<std::int32_t>(p);
+        default:
+          return load<std::int64_t>(p);
+      }
+  }
+}
+
+void append_point(PointCloud& cloud, const Eigen::Vector3d& p, const Field* intensity_field,
+                  double intensity) {
+  if (!p.allFinite()) return;
+  const Eigen::Vector3f pf = p.cast<float>();
+  if (!pf.allFinite()) return;  // finite double beyond float range
+  cloud.points.push_back(pf);
+  if (intensity_field) cloud.intensities.push_back(static_cast<float>(intensity));
+}
+
+}  // namespace
+
+PointCloud read_pcd(const std::string& path) {
+  const std::string bytes = read_file_bytes(path);
+  const Header header = parse_header(path, bytes);
+  const Field* fx = find_field(path, header, "x", true);
+  const Field* fy = find_field(path, header, "y", true);
+  const Field* fz = find_field(path, header, "z", true);
+  for (const Field* f : {fx, fy, fz}) {
+    if (f->type != 'F') {
+      throw IoError(path, "field '" + f->name + "' has TYPE " + std::string(1, f->type) +
+                              ", expected F (float)");
+    }
+  }
+  const Field* fi = find_field(path, header, "intensity", false);
+  const std::size_t n = *header.points;
+  PointCloud cloud;
+
+  if (header.data == "binary") {
+    const std::size_t available = bytes.size() - header.data_offset;
+    if (n > available / header.record_size) {
+      throw IoError(path, "truncated binary data: " + std::to_string(n) + " points of " +
+                              std::to_string(header.record_size) + " bytes need " +
+                              std::to_string(n * header.record_size) + " bytes, only " +
+                              std::to_string(available) + " present");
+    }
+    cloud.points.reserve(n);
+    if (fi) cloud.intensities.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const char* rec = bytes.data() + header.data_offset + i * header.record_size;
+      const Eigen::Vector3d p(decode(*fx, rec + fx->offset), decode(*fy, rec + fy->offset),
+                              decode(*fz, rec + fz->offset));
+      append_point(cloud, p, fi, fi ? decode(*fi, rec + fi->offset) : 0.0);
+    }
+    return cloud;
+  }
+
+  // ASCII: one point per non-blank line.
+  const std::string_view text(bytes.data() + header.data_offset, bytes.size() - header.data_offset);
+  const auto lines = split_lines(text);
+  std::size_t read = 0;
+  std::size_t header_lines = 0;
+  for (std::size_t k = 0; k < header.data_offset; ++k) header_lines += bytes[k] == '\n';
+  cloud.points.reserve(std::min(n, lines.size()));
+  for (std::size_t li = 0; li < lines.size(); ++li) {
+    if (is_blank(lines[li])) continue;
+    const std::size_t line_no = header_lines + li + 1;
+    if (read == n) {
+      throw IoError(path, "line " + std::to_string(line_no) + ": more data lines than POINTS " +
+                              std::to_string(n));
+    }
+    const auto tokens = split_whitespace(lines[li]);
+    if (tokens.size() != header.tokens_per_point) {
+      throw IoError(path, "line " + std::to_string(line_no) + ": " + std::to_string(tokens.size()) +
+                              " values, expected " + std::to_string(header.tokens_per_point));
+    }
+    auto value = [&](const Field* f) {
+      const auto v = parse_double(tokens[f->column]);
+      if (!v) {
+        throw IoError(path, "line " + std::to_string(line_no) + ": field '" + f->name +
+                                "' value '" + std::string(tokens[f->column]) + "' is not a number");
+      }
+      return *v;
+    };
+    append_point(cloud, Eigen::Vector3d(value(fx), value(fy), value(fz)), fi, fi ? value(fi) : 0.0);
+    ++read;
+  }
+  if (read != n) {
+    throw IoError(path, "truncated ASCII data: " + std::to_string(read) + " of " +
+                            std::to_string(n) + " points present");
+  }
+  return cloud;
+}
+
+void write_pcd_binary(const std::string& path, const PointCloud& cloud) {
+  if (cloud.has_intensities() && cloud.intensities.size() != cloud.points.size()) {
+    throw std::invalid_argument(
+        "write_pcd_binary(" + path + "): " + std::to_string(cloud.intensities.size()) +
+        " intensities for " + std::to_string(cloud.points.size()) + " points");
+  }
+  const bool with_i = cloud.has_intensities();
+  const std::size_t n = cloud.points.size();
+  std::string out = "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\n";
+  out += with_i ? "FIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\n"
+                : "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n";
+  out += "WIDTH " + std::to_string(n) + "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " +
+         std::to_string(n) + "\nDATA binary\n";
+  const std::size_t header_size = out.size();
+  const std::size_t stride = with_i ? 4 : 3;
+  out.resize(header_size + n * stride * sizeof(float));
+  char* dst = out.data() + header_size;
+  for (std::size_t i = 0; i < n; ++i) {
+    float rec[4] = {cloud.points[i].x(), cloud.points[i].y(), cloud.points[i].z(),
+                    with_i ? cloud.intensities[i] : 0.0f};
+    std::memcpy(dst + i * stride * sizeof(float), rec, stride * sizeof(float));
+  }
+  write_file_bytes(path, out.data(), out.size());
+}
+
+}  // namespace litamin2::io
