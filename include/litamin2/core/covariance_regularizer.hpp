@@ -1,0 +1,33 @@
+#pragma once
+/// Regularised covariance and inverse for flat or linear voxels (walls, road, poles).
+///
+/// A voxel on a wall has one eigenvalue near zero, so its raw inverse is huge and the Cov term
+/// (paper Eq. 4), which uses Cp^-1 and Cq^-1, is dominated by noise. Two remedies are offered:
+/// - EigenClamp: eigenvalues below `min_eigen_ratio * lambda_max` are raised to that floor
+///   (shape kept where it is well conditioned);
+/// - Plane: GICP's plane model, eigenvalues replaced by (epsilon, 1, 1) * scale, with scale the
+///   largest eigenvalue so the distribution keeps its size.
+/// The default is chosen by measurement (docs/accuracy.md).
+
+#include <Eigen/Core>
+
+namespace litamin2 {
+
+enum class RegularizationMethod { EigenClamp, Plane };
+
+struct RegularizerConfig {
+  /// Which remedy to apply.
+  RegularizationMethod method = RegularizationMethod::EigenClamp;
+  /// EigenClamp: floor of each eigenvalue relative to the largest.
+  double min_eigen_ratio = 1e-2;
+  /// Plane: the small eigenvalue relative to the others (GICP uses 1e-3).
+  double plane_epsilon = 1e-3;
+  /// Absolute eigenvalue floor in m^2 for both methods (guards all-zero covariances).
+  double min_eigenvalue = 1e-6;
+};
+
+/// Regularises `cov` in place and writes its inverse.
+void regularize_covariance(const RegularizerConfig& config, Eigen::Matrix3d& cov,
+                           Eigen::Matrix3d& cov_inv);
+
+}  // namespace litamin2

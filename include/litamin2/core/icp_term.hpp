@@ -1,0 +1,49 @@
+#pragma once
+/// The ICP term of LiTAMIN2 (paper Eq. 3) for one correspondence, with derivatives with
+/// respect to the left pose update xi = (phi, tau) (see so3.hpp).
+///
+///   E_icp = r^T C_qp r,   r = q - (R p + t),
+///   C_qp  = (Cq + R Cp R^T + lambda I)^-1 / ||(Cq + R Cp R^T + lambda I)^-1||_F.
+///
+/// C_qp is held fixed within one Newton iteration (as GICP does), so with J = dr/dxi =
+/// [ [y]x  -I ] (y = R p + t) the gradient is 2 J^T C r and the Hessian 2 J^T C J.
+
+#include <Eigen/Core>
+
+namespace litamin2 {
+
+/// The normalised combined precision C_qp of Eq. 3. `rotated_cp` is R Cp R^T.
+inline Eigen::Matrix3d combined_precision(const Eigen::Matrix3d& cq,
+                                          const Eigen::Matrix3d& rotated_cp, double lambda) {
+  const Eigen::Matrix3d combined = cq + rotated_cp + lambda * Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d inverse = combined.inverse();
+  return inverse / inverse.norm();
+}
+
+struct IcpTerm {
+  /// E_icp.
+  double energy = 0.0;
+  /// dE/dxi.
+  Eigen::Matrix<double, 6, 1> gradient;
+  /// Gauss-Newton Hessian 2 J^T C J.
+  Eigen::Matrix<double, 6, 6> hessian;
+};
+
+/// Evaluates the term for a source mean already moved to the world, y = R p + t.
+inline IcpTerm evaluate_icp_term(const Eigen::Vector3d& q, const Eigen::Vector3d& y,
+                                 const Eigen::Matrix3d& precision) {
+  IcpTerm term;
+  const Eigen::Vector3d r = q - y;
+  const Eigen::Vector3d cr = precision * r;
+  term.energy = r.dot(cr);
+  // J = [ [y]x  -I ];  J^T v = ( [y]x^T v ; -v ) = ( -y x v ; -v ) = ( v x y ; -v ).
+  term.gradient.head<3>() = 2.0 * cr.cross(y);
+  term.gradient.tail<3>() = -2.0 * cr;
+  Eigen::Matrix<double, 3, 6> jacobian;
+  jacobian.leftCols<3>() << 0.0, -y.z(), y.y(), y.z(), 0.0, -y.x(), -y.y(), y.x(), 0.0;
+  jacobian.rightCols<3>() = -Eigen::Matrix3d::Identity();
+  term.hessian = 2.0 * jacobian.transpose() * precision * jacobian;
+  return term;
+}
+
+}  // namespace litamin2

@@ -1,0 +1,59 @@
+#pragma once
+/// LiTAMIN2 registration: Newton's method on sum w_icp E_icp + w_cov E_cov (paper Eq. 6) over
+/// the source distributions and their nearest map distributions.
+
+#include "litamin2/core/correspondence_search.hpp"
+#include "litamin2/core/distribution.hpp"
+#include "litamin2/core/registration_config.hpp"
+#include "litamin2/core/voxel_map.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <vector>
+
+namespace litamin2 {
+
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+struct RegistrationResult {
+  /// Source-to-map pose found.
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  /// Hessian of the cost at the last iteration, in the update's (phi, tau) coordinates.
+  Matrix6d hessian = Matrix6d::Zero();
+  /// Cost at the last iteration.
+  double cost = 0.0;
+  /// Correspondences at the last iteration.
+  int correspondences = 0;
+  /// Newton iterations run.
+  int iterations = 0;
+  /// The update fell below the tolerances within max_iterations.
+  bool converged = false;
+  /// False when there were too few correspondences or the system could not be solved; `pose`
+  /// is then the last valid estimate.
+  bool valid = false;
+};
+
+/// Cost, gradient and Hessian at one pose (exposed for tests and benchmarks).
+struct CostEvaluation {
+  double cost = 0.0;
+  Vector6d gradient = Vector6d::Zero();
+  /// Hessian with the Cov term's f d2f part.
+  Matrix6d hessian = Matrix6d::Zero();
+  /// The Cov term's f d2f part alone (rotation block), so the solver can drop it.
+  Eigen::Matrix3d cov_curvature = Eigen::Matrix3d::Zero();
+  int correspondences = 0;
+};
+
+/// Evaluates the cost of `source` (in its own frame) against `map` at `pose`.
+CostEvaluation evaluate_cost(const std::vector<Distribution>& source, const VoxelMap& map,
+                             const CorrespondenceSearch& search, const Eigen::Isometry3d& pose,
+                             const RegistrationConfig& config);
+
+/// Registers `source` to `map` starting from `initial`.
+RegistrationResult register_distributions(const std::vector<Distribution>& source,
+                                          const VoxelMap& map, const CorrespondenceSearch& search,
+                                          const Eigen::Isometry3d& initial,
+                                          const RegistrationConfig& config);
+
+}  // namespace litamin2

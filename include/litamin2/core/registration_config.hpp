@@ -1,0 +1,48 @@
+#pragma once
+/// Parameters of LiTAMIN2 registration (paper Sec. III), defaults as in the paper.
+
+#include "litamin2/core/correspondence_search.hpp"
+
+namespace litamin2 {
+
+/// Which terms the cost has: the ICP term alone (Eq. 3), or ICP plus the Cov term (Eq. 4).
+enum class CostMode { Icp, IcpCov };
+
+/// How Newton's method treats the Cov term's second derivative 2 df df^T + 2 f d2f.
+enum class CovHessian {
+  /// The exact Hessian; if the total is not positive definite, the f d2f part is dropped for
+  /// that iteration.
+  Full,
+  /// Only the always positive semi-definite 2 df df^T (Gauss-Newton).
+  GaussNewton,
+};
+
+struct RegistrationConfig {
+  /// Terms of the cost.
+  CostMode mode = CostMode::IcpCov;
+  /// Robust-weight scale of the ICP term (paper: 0.5).
+  double sigma_icp = 0.5;
+  /// Robust-weight scale of the Cov term (paper: 3).
+  double sigma_cov = 3.0;
+  /// Added to the combined covariance before inversion (paper: 1e-6).
+  double lambda = 1e-6;
+  /// Treatment of the Cov term's Hessian.
+  CovHessian cov_hessian = CovHessian::Full;
+  /// How the nearest map distribution is found.
+  CorrespondenceMethod correspondence = CorrespondenceMethod::Voxel27;
+  /// Correspondences farther than this are ignored, metres; 0 means one voxel edge.
+  double max_correspondence_distance = 0.0;
+  /// Newton iteration limit.
+  int max_iterations = 30;
+  /// Converged when the rotation update is below this, radians ...
+  double rotation_tolerance = 1e-5;
+  /// ... and the translation update below this, metres.
+  double translation_tolerance = 1e-4;
+  /// Registration fails with fewer correspondences.
+  int min_correspondences = 20;
+  /// Source distributions per parallel block. Fixed, so that the ordered reduction gives the
+  /// same bits whatever the thread count.
+  int block_size = 64;
+};
+
+}  // namespace litamin2

@@ -1,0 +1,72 @@
+#pragma once
+/// LiTAMIN2 odometry for one sensor stream: constant-velocity prediction, registration of the
+/// scan's distributions to the keyframe map, keyframe decision and map update.
+
+#include "litamin2/core/correspondence_search.hpp"
+#include "litamin2/core/registration.hpp"
+#include "litamin2/core/tracker_config.hpp"
+#include "litamin2/core/voxel_map.hpp"
+#include "litamin2/core/voxelizer.hpp"
+
+#include <Eigen/Geometry>
+#include <memory>
+
+namespace litamin2 {
+
+/// Wall-clock time of each stage of one frame, milliseconds.
+struct StageTimes {
+  double voxelize_ms = 0.0;
+  double register_ms = 0.0;
+  double map_update_ms = 0.0;
+  double total_ms() const { return voxelize_ms + register_ms + map_update_ms; }
+};
+
+struct FrameResult {
+  /// Sensor pose in the frame of the first scan.
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  /// Covariance of the pose in (phi, tau) coordinates of the left update, from the Hessian at
+  /// convergence (2 sigma^2 H^-1 with sigma^2 the cost per residual degree of freedom); zero for
+  /// the first frame.
+  Matrix6d covariance = Matrix6d::Zero();
+  /// This frame was added to the map.
+  bool keyframe = false;
+  /// Registration succeeded (false for the first frame and when it failed; the pose is then
+  /// the constant-velocity prediction).
+  bool registered = false;
+  int iterations = 0;
+  int source_distributions = 0;
+  int correspondences = 0;
+  StageTimes times;
+};
+
+class Tracker {
+ public:
+  /// Throws ConfigError if the config is invalid.
+  explicit Tracker(const TrackerConfig& config);
+  ~Tracker();
+
+  /// Estimates the pose of the next scan of the stream.
+  FrameResult process(const PointCloud& scan);
+
+  /// The map of distributions the next scan is registered to.
+  const VoxelMap& map() const { return map_; }
+  /// Distributions of the last processed scan, sensor frame.
+  const std::vector<Distribution>& last_distributions() const { return source_; }
+  const TrackerConfig& config() const { return config_; }
+  std::size_t frames() const { return frames_; }
+
+ private:
+  bool is_keyframe(const Eigen::Isometry3d& pose) const;
+
+  TrackerConfig config_;
+  Voxelizer voxelizer_;
+  VoxelMap map_;
+  std::unique_ptr<CorrespondenceSearch> search_;
+  std::vector<Distribution> source_;
+  Eigen::Isometry3d pose_ = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d velocity_ = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d last_keyframe_ = Eigen::Isometry3d::Identity();
+  std::size_t frames_ = 0;
+};
+
+}  // namespace litamin2

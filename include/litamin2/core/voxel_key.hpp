@@ -1,0 +1,46 @@
+#pragma once
+/// Integer voxel coordinates and their packing into one 64-bit hash key.
+
+#include <Eigen/Core>
+#include <cmath>
+#include <cstdint>
+
+namespace litamin2 {
+
+using VoxelIndex = Eigen::Vector3i;
+
+/// Voxel holding point p for voxels of edge `inv_size`^-1 aligned at the origin.
+inline VoxelIndex voxel_index(const Eigen::Vector3d& p, double inv_size) {
+  return VoxelIndex(static_cast<int>(std::floor(p.x() * inv_size)),
+                    static_cast<int>(std::floor(p.y() * inv_size)),
+                    static_cast<int>(std::floor(p.z() * inv_size)));
+}
+
+/// Packs a voxel index into 64 bits: 21 bits per axis, i.e. +-1M voxels (3000 km at 3 m).
+inline std::uint64_t pack_voxel(const VoxelIndex& v) {
+  constexpr std::uint64_t kMask = (1ull << 21) - 1;
+  constexpr std::int64_t kOffset = 1ll << 20;
+  return (static_cast<std::uint64_t>(v.x() + kOffset) & kMask) |
+         ((static_cast<std::uint64_t>(v.y() + kOffset) & kMask) << 21) |
+         ((static_cast<std::uint64_t>(v.z() + kOffset) & kMask) << 42);
+}
+
+/// Inverse of pack_voxel.
+inline VoxelIndex unpack_voxel(std::uint64_t key) {
+  constexpr std::uint64_t kMask = (1ull << 21) - 1;
+  constexpr int kOffset = 1 << 20;
+  return VoxelIndex(static_cast<int>(key & kMask) - kOffset,
+                    static_cast<int>((key >> 21) & kMask) - kOffset,
+                    static_cast<int>((key >> 42) & kMask) - kOffset);
+}
+
+/// Hash for packed keys: a multiplicative mix, since the packed key's low bits are one axis.
+struct VoxelKeyHash {
+  std::size_t operator()(std::uint64_t key) const {
+    key ^= key >> 31;
+    key *= 0x9E3779B97F4A7C15ull;
+    return static_cast<std::size_t>(key ^ (key >> 29));
+  }
+};
+
+}  // namespace litamin2

@@ -1,0 +1,55 @@
+#pragma once
+/// The target of registration: a world-frame voxel map of normal distributions built from the
+/// points of keyframes. Insertion merges moments into existing voxels; voxels beyond a radius
+/// of the vehicle are removed, so memory is bounded by the radius, not by the drive's length.
+
+#include "litamin2/core/distribution.hpp"
+#include "litamin2/core/point_cloud.hpp"
+#include "litamin2/core/voxel_key.hpp"
+#include "litamin2/core/voxelizer.hpp"
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <vector>
+
+namespace litamin2 {
+
+struct VoxelMapConfig {
+  /// Voxels whose centre is farther than this from the current position are dropped, metres.
+  double radius = 100.0;
+};
+
+class VoxelMap {
+ public:
+  /// Voxel size, minimum points, point range limits and regularisation come from `voxels`.
+  VoxelMap(const VoxelizerConfig& voxels, const VoxelMapConfig& config);
+  ~VoxelMap();
+  VoxelMap(VoxelMap&&) noexcept;
+  VoxelMap& operator=(VoxelMap&&) noexcept;
+
+  /// Votes the scan's points, moved to the world by `pose`, into the map.
+  void insert(const PointCloud& scan, const Eigen::Isometry3d& pose);
+  /// Drops every voxel whose centre is farther than the configured radius from `position`.
+  void remove_far(const Eigen::Vector3d& position);
+
+  /// Distributions of the voxels with enough points, world frame.
+  const std::vector<Distribution>& distributions() const { return distributions_; }
+  /// Index into distributions() of the voxel at `index`, or -1 if there is none.
+  int find(const VoxelIndex& index) const;
+  /// Number of voxels holding points (with or without a valid distribution).
+  std::size_t num_voxels() const;
+  /// Edge of a voxel, metres.
+  double voxel_size() const { return voxels_.voxel_size; }
+  bool empty() const { return distributions_.empty(); }
+
+ private:
+  void rebuild_distributions();
+
+  struct Cells;
+  VoxelizerConfig voxels_;
+  VoxelMapConfig config_;
+  std::unique_ptr<Cells> cells_;
+  std::vector<Distribution> distributions_;
+};
+
+}  // namespace litamin2

@@ -1,0 +1,60 @@
+#pragma once
+/// Running first and second moments of the points of one voxel.
+///
+/// Sums are kept in double and relative to a local origin (the voxel's centre), so a voxel at
+/// 80 m keeps its covariance: float sums of x^2 at that range lose it.
+
+#include "litamin2/core/covariance_regularizer.hpp"
+#include "litamin2/core/distribution.hpp"
+
+#include <Eigen/Core>
+
+namespace litamin2 {
+
+struct VoxelMoments {
+  /// Local origin the sums are relative to.
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  /// Number of points.
+  int count = 0;
+  /// Sum of (p - origin).
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  /// Upper triangle of the sum of (p - origin)(p - origin)^T: xx, xy, xz, yy, yz, zz.
+  Eigen::Matrix<double, 6, 1> sum_sq = Eigen::Matrix<double, 6, 1>::Zero();
+
+  /// Adds one point.
+  void add(const Eigen::Vector3d& p) {
+    const Eigen::Vector3d d = p - origin;
+    ++count;
+    sum += d;
+    sum_sq(0) += d.x() * d.x();
+    sum_sq(1) += d.x() * d.y();
+    sum_sq(2) += d.x() * d.z();
+    sum_sq(3) += d.y() * d.y();
+    sum_sq(4) += d.y() * d.z();
+    sum_sq(5) += d.z() * d.z();
+  }
+
+  /// Adds the moments of another voxel with the same origin.
+  void merge(const VoxelMoments& other) {
+    count += other.count;
+    sum += other.sum;
+    sum_sq += other.sum_sq;
+  }
+
+  /// Mean and (maximum-likelihood) covariance, regularised; valid for count >= 1.
+  Distribution to_distribution(const RegularizerConfig& regularizer) const {
+    Distribution dist;
+    const double n = static_cast<double>(count);
+    const Eigen::Vector3d local_mean = sum / n;
+    dist.mean = origin + local_mean;
+    Eigen::Matrix3d second;
+    second << sum_sq(0), sum_sq(1), sum_sq(2), sum_sq(1), sum_sq(3), sum_sq(4), sum_sq(2),
+        sum_sq(4), sum_sq(5);
+    dist.cov = second / n - local_mean * local_mean.transpose();
+    dist.count = count;
+    regularize_covariance(regularizer, dist.cov, dist.cov_inv);
+    return dist;
+  }
+};
+
+}  // namespace litamin2

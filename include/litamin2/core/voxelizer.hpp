@@ -1,0 +1,47 @@
+#pragma once
+/// Votes a scan into voxels and reduces each voxel to one normal distribution (paper Sec. III-A).
+
+#include "litamin2/core/covariance_regularizer.hpp"
+#include "litamin2/core/distribution.hpp"
+#include "litamin2/core/point_cloud.hpp"
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <vector>
+
+namespace litamin2 {
+
+struct VoxelizerConfig {
+  /// Voxel edge in metres (the paper uses 3 m on KITTI).
+  double voxel_size = 3.0;
+  /// Voxels with fewer points are discarded: their covariance is not meaningful.
+  int min_points = 5;
+  /// Points closer than this to the sensor are ignored (the vehicle itself), metres.
+  double min_range = 1.0;
+  /// Points farther than this are ignored, metres.
+  double max_range = 100.0;
+  /// Covariance regularisation for flat voxels.
+  RegularizerConfig regularizer;
+};
+
+/// Reusable voxeliser: keeps its hash table between scans to avoid reallocation.
+class Voxelizer {
+ public:
+  explicit Voxelizer(const VoxelizerConfig& config);
+  ~Voxelizer();
+  Voxelizer(Voxelizer&&) noexcept;
+  Voxelizer& operator=(Voxelizer&&) noexcept;
+
+  /// Distributions of the scan's voxels, in the scan's frame, in order of first occupancy
+  /// (deterministic for a given scan).
+  std::vector<Distribution> voxelize(const PointCloud& scan);
+
+  const VoxelizerConfig& config() const { return config_; }
+
+ private:
+  struct Table;
+  VoxelizerConfig config_;
+  std::unique_ptr<Table> table_;
+};
+
+}  // namespace litamin2

@@ -1,0 +1,140 @@
+#include "litamin2/core/registration.hpp"
+
+#include "litamin2/core/cov_term.hpp"
+#include "litamin2/core/icp_term.hpp"
+#include "litamin2/core/robust_weight.hpp"
+#include "litamin2/core/so3.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
+#include <Eigen/Cholesky>
+
+namespace litamin2 {
+namespace {
+
+/// Adds one correspondence's weighted terms (paper Eq. 6) to `out`.
+void accumulate_correspondence(const Distribution& source, const Distribution& target,
+                               const Eigen::Isometry3d& pose, const RegistrationConfig& config,
+                               CostEvaluation& out) {
+  const Eigen::Matrix3d& rotation = pose.linear();
+  const Eigen::Vector3d y = pose * source.mean;
+  const Eigen::Matrix3d rotated_cov = rotation * source.cov * rotation.transpose();
+
+  // ICP term, Eq. 3, with its robust weight, Eq. 5.
+  const Eigen::Matrix3d precision = combined_precision(target.cov, rotated_cov, config.lambda);
+  const IcpTerm icp = evaluate_icp_term(target.mean, y, precision);
+  const double w_icp = robust_weight(icp.energy, config.sigma_icp);
+  out.cost += w_icp * icp.energy;
+  out.gradient += w_icp * icp.gradient;
+  out.hessian += w_icp * icp.hessian;
+  ++out.correspondences;
+  if (config.mode != CostMode::IcpCov) return;
+
+  // Cov term, Eq. 4: E_cov = f^2, rotation only.
+  const Eigen::Matrix3d rotated_cov_inv = rotation * source.cov_inv * rotation.transpose();
+  const CovShape shape =
+      evaluate_cov_shape(rotated_cov_inv, rotated_cov, target.cov, target.cov_inv);
+  const double energy = shape.f * shape.f;
+  const double w_cov = robust_weight(energy, config.sigma_cov);
+  out.cost += w_cov * energy;
+  out.gradient.head<3>() += w_cov * 2.0 * shape.f * shape.gradient;
+  out.hessian.topLeftCorner<3, 3>() += w_cov * 2.0 * shape.gradient * shape.gradient.transpose();
+  if (config.cov_hessian == CovHessian::Full) {
+    const Eigen::Matrix3d curvature = w_cov * 2.0 * shape.f * shape.hessian;
+    out.hessian.topLeftCorner<3, 3>() += curvature;
+    out.cov_curvature += curvature;
+  }
+}
+
+void add_into(CostEvaluation& total, const CostEvaluation& part) {
+  total.cost += part.cost;
+  total.gradient += part.gradient;
+  total.hessian += part.hessian;
+  total.cov_curvature += part.cov_curvature;
+  total.correspondences += part.correspondences;
+}
+
+}  // namespace
+
+CostEvaluation evaluate_cost(const std::vector<Distribution>& source, const VoxelMap& map,
+                             const CorrespondenceSearch& search, const Eigen::Isometry3d& pose,
+                             const RegistrationConfig& config) {
+  const double max_distance = config.max_correspondence_distance > 0.0
+                                  ? config.max_correspondence_distance
+                                  : map.voxel_size();
+  const double max_distance_sq = max_distance * max_distance;
+  const std::size_t block = static_cast<std::size_t>(std::max(1, config.block_size));
+  const std::size_t num_blocks = (source.size() + block - 1) / block;
+  std::vector<CostEvaluation> partial(num_blocks);
+  const auto& targets = map.distributions();
+
+  // Fixed blocks, each summed in order, then the blocks summed in order: the result does not
+  // depend on how many threads ran the blocks.
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, num_blocks, 1),
+      [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t b = range.begin(); b != range.end(); ++b) {
+          const std::size_t end = std::min(source.size(), (b + 1) * block);
+          for (std::size_t i = b * block; i < end; ++i) {
+            const int match = search.nearest(pose * source[i].mean, max_distance_sq);
+            if (match >= 0) {
+              accumulate_correspondence(source[i], targets[match], pose, config, partial[b]);
+            }
+          }
+        }
+      },
+      tbb::simple_partitioner());
+
+  CostEvaluation total;
+  for (const CostEvaluation& part : partial) add_into(total, part);
+  return total;
+}
+
+RegistrationResult register_distributions(const std::vector<Distribution>& source,
+                                          const VoxelMap& map, const CorrespondenceSearch& search,
+                                          const Eigen::Isometry3d& initial,
+                                          const RegistrationConfig& config) {
+  RegistrationResult result;
+  result.pose = initial;
+  for (int iteration = 0; iteration < config.max_iterations; ++iteration) {
+    const CostEvaluation eval = evaluate_cost(source, map, search, result.pose, config);
+    result.iterations = iteration + 1;
+    result.cost = eval.cost;
+    result.correspondences = eval.correspondences;
+    result.hessian = eval.hessian;
+    if (eval.correspondences < config.min_correspondences) {
+      result.valid = false;
+      return result;
+    }
+    // Newton step H xi = -g. Where the Cov term's curvature makes H indefinite, drop it.
+    Eigen::LDLT<Matrix6d> solver(eval.hessian);
+    if (solver.info() != Eigen::Success || !solver.isPositive() ||
+        (solver.vectorD().array() <= 0.0).any()) {
+      Matrix6d hessian = eval.hessian;
+      hessian.topLeftCorner<3, 3>() -= eval.cov_curvature;
+      result.hessian = hessian;
+      solver.compute(hessian);
+      if (solver.info() != Eigen::Success || (solver.vectorD().array() <= 0.0).any()) {
+        result.valid = false;
+        return result;
+      }
+    }
+    const Vector6d xi = solver.solve(-eval.gradient);
+    if (!xi.allFinite()) {
+      result.valid = false;
+      return result;
+    }
+    result.pose = apply_left_update(xi, result.pose);
+    result.valid = true;
+    if (xi.head<3>().norm() < config.rotation_tolerance &&
+        xi.tail<3>().norm() < config.translation_tolerance) {
+      result.converged = true;
+      break;
+    }
+  }
+  return result;
+}
+
+}  // namespace litamin2

@@ -1,0 +1,254 @@
+#include "litamin2/core/tracker_config.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <set>
+#include <sstream>
+
+namespace litamin2 {
+namespace {
+
+/// Reads the keys of one YAML mapping into fields, rejecting unknown keys.
+class Section {
+ public:
+  Section(const YAML::Node& node, std::string path) : node_(node), path_(std::move(path)) {
+    if (node_ && !node_.IsNull() && !node_.IsMap()) {
+      throw ConfigError(name() + ": expected a mapping of keys to values");
+    }
+  }
+
+  template <class T>
+  void read(const std::string& key, T& field) {
+    known_.insert(key);
+    if (!node_ || !node_[key]) return;
+    try {
+      field = node_[key].as<T>();
+    } catch (const YAML::Exception&) {
+      throw ConfigError(name(key) + ": cannot read '" + scalar(key) + "' as " + type_name<T>());
+    }
+  }
+
+  template <class Enum>
+  void read_enum(const std::string& key, Enum& field,
+                 const std::vector<std::pair<std::string, Enum>>& names) {
+    std::string text;
+    read(key, text);
+    if (text.empty()) return;
+    for (const auto& [n, value] : names) {
+      if (n == text) {
+        field = value;
+        return;
+      }
+    }
+    std::string allowed;
+    for (const auto& entry : names) allowed += (allowed.empty() ? "" : ", ") + entry.first;
+    throw ConfigError(name(key) + ": '" + text + "' is not one of: " + allowed);
+  }
+
+  YAML::Node child(const std::string& key) {
+    known_.insert(key);
+    return node_ ? node_[key] : YAML::Node();
+  }
+
+  /// Throws on keys that no read() asked for (typos would otherwise be ignored silently).
+  void reject_unknown() const {
+    if (!node_ || !node_.IsMap()) return;
+    for (const auto& entry : node_) {
+      const std::string key = entry.first.as<std::string>();
+      if (!known_.count(key)) throw ConfigError(name(key) + ": unknown key");
+    }
+  }
+
+ private:
+  std::string name(const std::string& key = "") const {
+    if (key.empty()) return path_.empty() ? std::string("config") : path_;
+    return path_.empty() ? key : path_ + "." + key;
+  }
+  std::string scalar(const std::string& key) const {
+    std::ostringstream out;
+    out << node_[key];
+    return out.str();
+  }
+  template <class T>
+  static const char* type_name() {
+    if constexpr (std::is_same_v<T, int>) return "an integer";
+    if constexpr (std::is_same_v<T, double>) return "a number";
+    if constexpr (std::is_same_v<T, bool>) return "true/false";
+    return "a string";
+  }
+
+  YAML::Node node_;
+  std::string path_;
+  std::set<std::string> known_;
+};
+
+const std::vector<std::pair<std::string, CostMode>> kModes = {{"icp", CostMode::Icp},
+                                                              {"icp+cov", CostMode::IcpCov}};
+const std::vector<std::pair<std::string, CovHessian>> kCovHessians = {
+    {"full", CovHessian::Full}, {"gauss_newton", CovHessian::GaussNewton}};
+const std::vector<std::pair<std::string, CorrespondenceMethod>> kCorrespondences = {
+    {"voxel27", CorrespondenceMethod::Voxel27}, {"kdtree", CorrespondenceMethod::KdTree}};
+const std::vector<std::pair<std::string, RegularizationMethod>> kRegularizations = {
+    {"eigen_clamp", RegularizationMethod::EigenClamp}, {"plane", RegularizationMethod::Plane}};
+
+template <class Enum>
+std::string enum_name(Enum value, const std::vector<std::pair<std::string, Enum>>& names) {
+  for (const auto& [n, v] : names) {
+    if (v == value) return n;
+  }
+  return "?";
+}
+
+void require(bool ok, const std::string& key, double value, const std::string& rule) {
+  if (ok) return;
+  std::ostringstream out;
+  out << key << ": " << value << " is invalid (" << rule << ")";
+  throw ConfigError(out.str());
+}
+
+}  // namespace
+
+TrackerConfig tracker_config_from_yaml(const YAML::Node& node) {
+  TrackerConfig config;
+  Section root(node, "");
+
+  Section voxelizer(root.child("voxelizer"), "voxelizer");
+  VoxelizerConfig& v = config.voxelizer;
+  voxelizer.read("voxel_size", v.voxel_size);
+  voxelizer.read("min_points", v.min_points);
+  voxelizer.read("min_range", v.min_range);
+  voxelizer.read("max_range", v.max_range);
+  Section regularizer(voxelizer.child("regularization"), "voxelizer.regularization");
+  regularizer.read_enum("method", v.regularizer.method, kRegularizations);
+  regularizer.read("min_eigen_ratio", v.regularizer.min_eigen_ratio);
+  regularizer.read("plane_epsilon", v.regularizer.plane_epsilon);
+  regularizer.read("min_eigenvalue", v.regularizer.min_eigenvalue);
+  regularizer.reject_unknown();
+  voxelizer.reject_unknown();
+
+  Section map(root.child("map"), "map");
+  map.read("radius", config.map.radius);
+  map.reject_unknown();
+
+  Section registration(root.child("registration"), "registration");
+  RegistrationConfig& r = config.registration;
+  registration.read_enum("mode", r.mode, kModes);
+  registration.read("sigma_icp", r.sigma_icp);
+  registration.read("sigma_cov", r.sigma_cov);
+  registration.read("lambda", r.lambda);
+  registration.read_enum("cov_hessian", r.cov_hessian, kCovHessians);
+  registration.read_enum("correspondence", r.correspondence, kCorrespondences);
+  registration.read("max_correspondence_distance", r.max_correspondence_distance);
+  registration.read("max_iterations", r.max_iterations);
+  registration.read("rotation_tolerance", r.rotation_tolerance);
+  registration.read("translation_tolerance", r.translation_tolerance);
+  registration.read("min_correspondences", r.min_correspondences);
+  registration.read("block_size", r.block_size);
+  registration.reject_unknown();
+
+  Section keyframe(root.child("keyframe"), "keyframe");
+  keyframe.read("distance", config.keyframe.distance);
+  keyframe.read("angle_deg", config.keyframe.angle_deg);
+  keyframe.reject_unknown();
+
+  root.reject_unknown();
+  validate(config);
+  return config;
+}
+
+TrackerConfig load_tracker_config(const std::string& path) {
+  YAML::Node node;
+  try {
+    node = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw ConfigError(path + ": cannot open the config file");
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(path + ": not valid YAML: " + e.what());
+  }
+  if (node.IsMap() && node["tracker"]) node = node["tracker"];
+  try {
+    return tracker_config_from_yaml(node);
+  } catch (const ConfigError& e) {
+    throw ConfigError(path + ": " + e.what());
+  }
+}
+
+void validate(const TrackerConfig& c) {
+  const VoxelizerConfig& v = c.voxelizer;
+  require(std::isfinite(v.voxel_size) && v.voxel_size >= 0.05 && v.voxel_size <= 50.0,
+          "voxelizer.voxel_size", v.voxel_size, "metres, 0.05 to 50");
+  require(v.min_points >= 3, "voxelizer.min_points", v.min_points, "at least 3");
+  require(v.min_range >= 0.0, "voxelizer.min_range", v.min_range, "at least 0");
+  require(v.max_range > v.min_range, "voxelizer.max_range", v.max_range, "above min_range");
+  require(v.regularizer.min_eigen_ratio > 0.0 && v.regularizer.min_eigen_ratio <= 1.0,
+          "voxelizer.regularization.min_eigen_ratio", v.regularizer.min_eigen_ratio, "in (0, 1]");
+  require(v.regularizer.plane_epsilon > 0.0 && v.regularizer.plane_epsilon <= 1.0,
+          "voxelizer.regularization.plane_epsilon", v.regularizer.plane_epsilon, "in (0, 1]");
+  require(v.regularizer.min_eigenvalue > 0.0, "voxelizer.regularization.min_eigenvalue",
+          v.regularizer.min_eigenvalue, "positive");
+  require(c.map.radius > v.voxel_size, "map.radius", c.map.radius, "above the voxel size");
+  const RegistrationConfig& r = c.registration;
+  require(r.sigma_icp > 0.0, "registration.sigma_icp", r.sigma_icp, "positive");
+  require(r.sigma_cov > 0.0, "registration.sigma_cov", r.sigma_cov, "positive");
+  require(r.lambda >= 0.0, "registration.lambda", r.lambda, "at least 0");
+  require(r.max_correspondence_distance >= 0.0, "registration.max_correspondence_distance",
+          r.max_correspondence_distance, "at least 0; 0 means one voxel");
+  require(r.correspondence != CorrespondenceMethod::Voxel27 ||
+              r.max_correspondence_distance <= v.voxel_size,
+          "registration.max_correspondence_distance", r.max_correspondence_distance,
+          "voxel27 search is exact only up to one voxel edge; use kdtree for more");
+  require(r.max_iterations >= 1 && r.max_iterations <= 1000, "registration.max_iterations",
+          r.max_iterations, "1 to 1000");
+  require(r.rotation_tolerance > 0.0, "registration.rotation_tolerance", r.rotation_tolerance,
+          "positive");
+  require(r.translation_tolerance > 0.0, "registration.translation_tolerance",
+          r.translation_tolerance, "positive");
+  require(r.min_correspondences >= 6, "registration.min_correspondences", r.min_correspondences,
+          "at least 6");
+  require(r.block_size >= 1, "registration.block_size", r.block_size, "at least 1");
+  require(c.keyframe.distance >= 0.0, "keyframe.distance", c.keyframe.distance, "at least 0");
+  require(c.keyframe.angle_deg >= 0.0, "keyframe.angle_deg", c.keyframe.angle_deg, "at least 0");
+}
+
+std::string tracker_config_to_yaml(const TrackerConfig& c) {
+  YAML::Emitter out;
+  out << YAML::BeginMap;
+  out << YAML::Key << "voxelizer" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "voxel_size" << YAML::Value << c.voxelizer.voxel_size;
+  out << YAML::Key << "min_points" << YAML::Value << c.voxelizer.min_points;
+  out << YAML::Key << "min_range" << YAML::Value << c.voxelizer.min_range;
+  out << YAML::Key << "max_range" << YAML::Value << c.voxelizer.max_range;
+  out << YAML::Key << "regularization" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "method" << YAML::Value
+      << enum_name(c.voxelizer.regularizer.method, kRegularizations);
+  out << YAML::Key << "min_eigen_ratio" << YAML::Value << c.voxelizer.regularizer.min_eigen_ratio;
+  out << YAML::Key << "plane_epsilon" << YAML::Value << c.voxelizer.regularizer.plane_epsilon;
+  out << YAML::Key << "min_eigenvalue" << YAML::Value << c.voxelizer.regularizer.min_eigenvalue;
+  out << YAML::EndMap << YAML::EndMap;
+  out << YAML::Key << "map" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "radius" << YAML::Value << c.map.radius << YAML::EndMap;
+  const RegistrationConfig& r = c.registration;
+  out << YAML::Key << "registration" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "mode" << YAML::Value << enum_name(r.mode, kModes);
+  out << YAML::Key << "sigma_icp" << YAML::Value << r.sigma_icp;
+  out << YAML::Key << "sigma_cov" << YAML::Value << r.sigma_cov;
+  out << YAML::Key << "lambda" << YAML::Value << r.lambda;
+  out << YAML::Key << "cov_hessian" << YAML::Value << enum_name(r.cov_hessian, kCovHessians);
+  out << YAML::Key << "correspondence" << YAML::Value
+      << enum_name(r.correspondence, kCorrespondences);
+  out << YAML::Key << "max_correspondence_distance" << YAML::Value << r.max_correspondence_distance;
+  out << YAML::Key << "max_iterations" << YAML::Value << r.max_iterations;
+  out << YAML::Key << "rotation_tolerance" << YAML::Value << r.rotation_tolerance;
+  out << YAML::Key << "translation_tolerance" << YAML::Value << r.translation_tolerance;
+  out << YAML::Key << "min_correspondences" << YAML::Value << r.min_correspondences;
+  out << YAML::Key << "block_size" << YAML::Value << r.block_size;
+  out << YAML::EndMap;
+  out << YAML::Key << "keyframe" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "distance" << YAML::Value << c.keyframe.distance;
+  out << YAML::Key << "angle_deg" << YAML::Value << c.keyframe.angle_deg;
+  out << YAML::EndMap << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace litamin2

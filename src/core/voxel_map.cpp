@@ -1,0 +1,99 @@
+#include "litamin2/core/voxel_map.hpp"
+
+#include "litamin2/core/voxel_moments.hpp"
+
+#include <tsl/robin_map.h>
+
+namespace litamin2 {
+
+struct VoxelMap::Cells {
+  struct Cell {
+    std::uint64_t key = 0;
+    VoxelMoments moments;
+    /// The distribution of `moments`, recomputed only when points were added.
+    Distribution cached;
+    /// Points were added since `cached` was computed.
+    bool dirty = true;
+    /// Index into distributions_, or -1 while the voxel has too few points.
+    int distribution = -1;
+  };
+  /// Cells in insertion order (so iteration, and thus results, are deterministic).
+  std::vector<Cell> cells;
+  tsl::robin_map<std::uint64_t, int, VoxelKeyHash> cell_of_key;
+};
+
+VoxelMap::VoxelMap(const VoxelizerConfig& voxels, const VoxelMapConfig& config)
+    : voxels_(voxels), config_(config), cells_(std::make_unique<Cells>()) {}
+VoxelMap::~VoxelMap() = default;
+VoxelMap::VoxelMap(VoxelMap&&) noexcept = default;
+VoxelMap& VoxelMap::operator=(VoxelMap&&) noexcept = default;
+
+void VoxelMap::insert(const PointCloud& scan, const Eigen::Isometry3d& pose) {
+  const double size = voxels_.voxel_size;
+  const double inv_size = 1.0 / size;
+  const double min_range_sq = voxels_.min_range * voxels_.min_range;
+  const double max_range_sq = voxels_.max_range * voxels_.max_range;
+  Cells& c = *cells_;
+  for (const Eigen::Vector3f& pf : scan.points) {
+    const Eigen::Vector3d p = pf.cast<double>();
+    const double range_sq = p.squaredNorm();
+    if (!(range_sq >= min_range_sq && range_sq <= max_range_sq)) continue;
+    const Eigen::Vector3d world = pose * p;
+    const VoxelIndex index = voxel_index(world, inv_size);
+    const std::uint64_t key = pack_voxel(index);
+    const auto [it, inserted] = c.cell_of_key.try_emplace(key, static_cast<int>(c.cells.size()));
+    if (inserted) {
+      Cells::Cell& cell = c.cells.emplace_back();
+      cell.key = key;
+      cell.moments.origin = (index.cast<double>() + Eigen::Vector3d::Constant(0.5)) * size;
+    }
+    Cells::Cell& cell = c.cells[it->second];
+    cell.moments.add(world);
+    cell.dirty = true;
+  }
+  rebuild_distributions();
+}
+
+void VoxelMap::remove_far(const Eigen::Vector3d& position) {
+  Cells& c = *cells_;
+  const double radius_sq = config_.radius * config_.radius;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < c.cells.size(); ++i) {
+    if ((c.cells[i].moments.origin - position).squaredNorm() <= radius_sq) {
+      if (kept != i) c.cells[kept] = std::move(c.cells[i]);
+      ++kept;
+    }
+  }
+  if (kept == c.cells.size()) return;
+  c.cells.resize(kept);
+  c.cell_of_key.clear();
+  for (std::size_t i = 0; i < c.cells.size(); ++i) {
+    c.cell_of_key.emplace(c.cells[i].key, static_cast<int>(i));
+  }
+  rebuild_distributions();
+}
+
+void VoxelMap::rebuild_distributions() {
+  distributions_.clear();
+  for (Cells::Cell& cell : cells_->cells) {
+    cell.distribution = -1;
+    if (cell.moments.count < voxels_.min_points) continue;
+    if (cell.dirty) {
+      cell.cached = cell.moments.to_distribution(voxels_.regularizer);
+      cell.dirty = false;
+    }
+    cell.distribution = static_cast<int>(distributions_.size());
+    distributions_.push_back(cell.cached);
+  }
+}
+
+int VoxelMap::find(const VoxelIndex& index) const {
+  const auto it = cells_->cell_of_key.find(pack_voxel(index));
+  return it == cells_->cell_of_key.end() ? -1 : cells_->cells[it->second].distribution;
+}
+
+std::size_t VoxelMap::num_voxels() const {
+  return cells_->cells.size();
+}
+
+}  // namespace litamin2

@@ -1,0 +1,177 @@
+// Derivatives of the LiTAMIN2 cost terms against central finite differences, at random poses
+// and covariances including nearly flat ones: a wrong sign or a missing term fails here.
+
+#include "litamin2/core/cov_term.hpp"
+#include "litamin2/core/covariance_regularizer.hpp"
+#include "litamin2/core/icp_term.hpp"
+#include "litamin2/core/robust_weight.hpp"
+#include "litamin2/core/so3.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace litamin2 {
+namespace {
+
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+struct Random {
+  std::mt19937 engine{12345};
+  double uniform(double a, double b) {
+    return std::uniform_real_distribution<double>(a, b)(engine);
+  }
+  Eigen::Vector3d vector(double scale) {
+    return Eigen::Vector3d(uniform(-scale, scale), uniform(-scale, scale), uniform(-scale, scale));
+  }
+  Eigen::Matrix3d rotation() { return so3_exp(vector(M_PI)); }
+  /// Covariance with eigenvalues spread by `flatness` (1e-4 = a wall), regularised as the
+  /// voxeliser does.
+  Eigen::Matrix3d covariance(double flatness, Eigen::Matrix3d* inverse) {
+    const Eigen::Matrix3d basis = rotation();
+    const Eigen::Vector3d values(uniform(0.2, 1.0), uniform(0.2, 1.0),
+                                 flatness * uniform(0.5, 1.0));
+    Eigen::Matrix3d cov = basis * values.asDiagonal() * basis.transpose();
+    Eigen::Matrix3d inv;
+    regularize_covariance(RegularizerConfig{}, cov, inv);
+    *inverse = inv;
+    return cov;
+  }
+};
+
+double cov_f(const Eigen::Matrix3d& rotation, const Eigen::Matrix3d& cp,
+             const Eigen::Matrix3d& cp_inv, const Eigen::Matrix3d& cq,
+             const Eigen::Matrix3d& cq_inv) {
+  const Eigen::Matrix3d m = rotation * cp_inv * rotation.transpose();
+  const Eigen::Matrix3d n = rotation * cp * rotation.transpose();
+  return (m * cq).trace() + (cq_inv * n).trace() - 6.0;
+}
+
+class CovTermTest : public ::testing::TestWithParam<double> {};
+
+TEST_P(CovTermTest, GradientAndHessianMatchFiniteDifferences) {
+  Random rnd;
+  const double flatness = GetParam();
+  for (int trial = 0; trial < 50; ++trial) {
+    Eigen::Matrix3d cp_inv, cq_inv;
+    const Eigen::Matrix3d cp = rnd.covariance(flatness, &cp_inv);
+    const Eigen::Matrix3d cq = rnd.covariance(flatness, &cq_inv);
+    const Eigen::Matrix3d r0 = rnd.rotation();
+    auto f = [&](const Eigen::Vector3d& phi) {
+      return cov_f(so3_exp(phi) * r0, cp, cp_inv, cq, cq_inv);
+    };
+    const CovShape shape =
+        evaluate_cov_shape(r0 * cp_inv * r0.transpose(), r0 * cp * r0.transpose(), cq, cq_inv);
+    const double scale = std::max(1.0, std::abs(shape.f));
+    EXPECT_NEAR(shape.f, f(Eigen::Vector3d::Zero()), 1e-9 * scale);
+
+    const double h = 1e-5;
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d e = Eigen::Vector3d::Unit(i) * h;
+      const double numeric = (f(e) - f(-e)) / (2 * h);
+      EXPECT_NEAR(shape.gradient(i), numeric, 1e-5 * scale) << "gradient " << i;
+    }
+    const double h2 = 1e-4;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        const Eigen::Vector3d a = Eigen::Vector3d::Unit(i) * h2;
+        const Eigen::Vector3d b = Eigen::Vector3d::Unit(j) * h2;
+        const double numeric = (f(a + b) - f(a - b) - f(-a + b) + f(-a - b)) / (4 * h2 * h2);
+        EXPECT_NEAR(shape.hessian(i, j), numeric, 1e-4 * scale) << "hessian " << i << j;
+      }
+    }
+    EXPECT_TRUE(shape.hessian.isApprox(shape.hessian.transpose(), 1e-12));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(RoundAndFlat, CovTermTest, ::testing::Values(1.0, 0.05, 1e-4));
+
+TEST(CovTerm, ZeroForIdenticalShapesAndTranslationFree) {
+  Random rnd;
+  Eigen::Matrix3d cov_inv;
+  const Eigen::Matrix3d cov = rnd.covariance(0.1, &cov_inv);
+  const CovShape shape = evaluate_cov_shape(cov_inv, cov, cov, cov_inv);
+  EXPECT_NEAR(shape.f, 0.0, 1e-9);
+  EXPECT_LT(shape.gradient.norm(), 1e-8);
+  // Rotating a flat source away from the target increases f (symmetric KL is >= 0).
+  const Eigen::Matrix3d r = so3_exp(Eigen::Vector3d(0.3, 0.0, 0.0));
+  const CovShape rotated =
+      evaluate_cov_shape(r * cov_inv * r.transpose(), r * cov * r.transpose(), cov, cov_inv);
+  EXPECT_GT(rotated.f, 0.0);
+}
+
+TEST(IcpTerm, GradientMatchesFiniteDifferencesAndHessianIsGaussNewton) {
+  Random rnd;
+  for (int trial = 0; trial < 50; ++trial) {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = rnd.rotation();
+    pose.translation() = rnd.vector(20.0);
+    const Eigen::Vector3d p = rnd.vector(30.0);
+    Eigen::Matrix3d cp_inv, cq_inv;
+    const Eigen::Matrix3d cp = rnd.covariance(1e-3, &cp_inv);
+    const Eigen::Matrix3d cq = rnd.covariance(1e-3, &cq_inv);
+    const Eigen::Matrix3d precision =
+        combined_precision(cq, pose.linear() * cp * pose.linear().transpose(), 1e-6);
+    EXPECT_NEAR(precision.norm(), 1.0, 1e-12);
+    const Eigen::Vector3d q = pose * p + rnd.vector(0.5);
+
+    auto energy = [&](const Vector6d& xi) {
+      const Eigen::Vector3d r = q - apply_left_update(xi, pose) * p;
+      return r.dot(precision * r);
+    };
+    const IcpTerm term = evaluate_icp_term(q, pose * p, precision);
+    EXPECT_NEAR(term.energy, energy(Vector6d::Zero()), 1e-9);
+    const double h = 1e-6;
+    for (int i = 0; i < 6; ++i) {
+      const Vector6d e = Vector6d::Unit(i) * h;
+      const double numeric = (energy(e) - energy(-e)) / (2 * h);
+      EXPECT_NEAR(term.gradient(i), numeric, 1e-5 * std::max(1.0, std::abs(numeric)))
+          << "gradient " << i;
+    }
+
+    // At a zero residual the Gauss-Newton Hessian is the exact one.
+    const Eigen::Vector3d q0 = pose * p;
+    auto energy0 = [&](const Vector6d& xi) {
+      const Eigen::Vector3d r = q0 - apply_left_update(xi, pose) * p;
+      return r.dot(precision * r);
+    };
+    const IcpTerm at_zero = evaluate_icp_term(q0, q0, precision);
+    const double h2 = 1e-4;
+    for (int i = 0; i < 6; ++i) {
+      for (int j = 0; j < 6; ++j) {
+        const Vector6d a = Vector6d::Unit(i) * h2;
+        const Vector6d b = Vector6d::Unit(j) * h2;
+        const double numeric =
+            (energy0(a + b) - energy0(a - b) - energy0(-a + b) + energy0(-a - b)) / (4 * h2 * h2);
+        EXPECT_NEAR(at_zero.hessian(i, j), numeric, 1e-4 * std::max(1.0, std::abs(numeric)))
+            << "hessian " << i << j;
+      }
+    }
+  }
+}
+
+TEST(RobustWeight, UsesSigmaSquared) {
+  EXPECT_DOUBLE_EQ(robust_weight(0.0, 0.5), 1.0);
+  EXPECT_DOUBLE_EQ(robust_weight(0.25, 0.5), 0.5);  // E = sigma^2 halves the weight
+  EXPECT_DOUBLE_EQ(robust_weight(9.0, 3.0), 0.5);
+  EXPECT_LT(robust_weight(100.0, 0.5), 0.01);
+}
+
+TEST(Regularizer, FlatCovarianceGetsBoundedInverse) {
+  Eigen::Matrix3d cov = Eigen::Vector3d(1.0, 1.0, 0.0).asDiagonal();
+  Eigen::Matrix3d inv;
+  RegularizerConfig config;
+  regularize_covariance(config, cov, inv);
+  EXPECT_TRUE((cov * inv).isApprox(Eigen::Matrix3d::Identity(), 1e-9));
+  EXPECT_NEAR(cov(2, 2), config.min_eigen_ratio, 1e-12);
+  config.method = RegularizationMethod::Plane;
+  cov = Eigen::Vector3d(4.0, 2.0, 1e-9).asDiagonal();
+  regularize_covariance(config, cov, inv);
+  EXPECT_NEAR(cov(0, 0), 4.0, 1e-12);
+  EXPECT_NEAR(cov(1, 1), 4.0, 1e-12);
+  EXPECT_NEAR(cov(2, 2), 4.0 * config.plane_epsilon, 1e-12);
+  EXPECT_TRUE((cov * inv).isApprox(Eigen::Matrix3d::Identity(), 1e-9));
+}
+
+}  // namespace
+}  // namespace litamin2
