@@ -1,0 +1,184 @@
+// litamin2-eval: compares an estimated trajectory with the ground truth (KITTI odometry metric,
+// ATE, RPE) and optionally plots both.
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "litamin2/eval/ate.hpp"
+#include "litamin2/eval/kitti_metrics.hpp"
+#include "litamin2/eval/rpe.hpp"
+#include "litamin2/io/io_error.hpp"
+#include "litamin2/io/trajectory.hpp"
+#include "report.hpp"
+#include "trajectory_plot.hpp"
+
+namespace {
+
+constexpr int kExitInputError = 2;
+
+struct Trajectory {
+  std::vector<Eigen::Isometry3d> poses;
+  std::vector<double> times;  // TUM only
+};
+
+Trajectory read_trajectory(const std::string& path, const std::string& format) {
+  Trajectory t;
+  if (format == "tum") {
+    for (const auto& p : litamin2::io::read_tum(path)) {
+      t.poses.push_back(p.pose);
+      t.times.push_back(p.time);
+    }
+  } else {
+    t.poses = litamin2::io::read_kitti_poses(path);
+  }
+  return t;
+}
+
+const char* kDescription =
+    "litamin2-eval: compare an estimated trajectory with the ground truth.\n"
+    "\n"
+    "Pose i of --est is compared with pose i of --gt; both files must hold the same number of\n"
+    "poses (TUM files are paired by line, not by timestamp; a warning is printed if the\n"
+    "timestamps of a pair differ by more than 10 ms).\n"
+    "\n"
+    "Reported:\n"
+    "  KITTI odometry metric, as evaluate_odometry.cpp of the official KITTI devkit: segments of\n"
+    "    100, 200, ..., 800 m measured along the ground truth, a start every 10 frames, segment "
+    "end\n"
+    "    = first frame whose distance exceeds start + length; error = inv(inv(E_a) E_b) inv(G_a)\n"
+    "    G_b. Per length and averaged over all segments: translation in %, rotation in deg/100 m.\n"
+    "    Undefined (printed as n/a / null, with a note) when the ground truth is shorter than\n"
+    "    100 m.\n"
+    "  ATE: absolute trajectory error after aligning the estimate positions to the ground truth\n"
+    "    (closed-form Umeyama/Horn; --align se3 (default), sim3 or none): translation RMSE, mean,\n"
+    "    median, max in m and rotation RMSE in deg.\n"
+    "  RPE: relative pose error over pairs (i, i + --rpe-delta): translation RMSE/mean in m,\n"
+    "    rotation RMSE in deg.\n";
+
+const char* kFooter =
+    "Plot (--plot): top view of the ground truth (black) and the estimate (red), start marked\n"
+    "green, equal scale on both axes. The two position axes with the largest extent are shown,\n"
+    "the lower-numbered one to the right and the other one upwards: x-z for KITTI camera-0 poses\n"
+    "(x right, z forward), x-y for z-up poses. .svg: SVG with legend, axis names and a scale bar;\n"
+    ".png: PNG (libpng) with a scale bar at the bottom left and a legend without text (top left:\n"
+    "black bar = ground truth, red bar = estimate).\n"
+    "\n"
+    "Exit codes: 0 success; 2 bad command line, missing/unreadable/malformed file, different pose\n"
+    "counts, empty file or plot that cannot be written.";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{kDescription, "litamin2-eval"};
+  app.footer(kFooter);
+  std::string gt_path;
+  std::string est_path;
+  std::string format = "kitti";
+  std::string align = "se3";
+  std::string plot_path;
+  bool json = false;
+  std::size_t rpe_delta = 1;
+  app.add_option("--gt", gt_path, "Ground-truth trajectory file")->required();
+  app.add_option("--est", est_path, "Estimated trajectory file")->required();
+  app.add_option("--format", format,
+                 "File format of both files: kitti (12 values per line, row-major 3x4 [R|t]) or "
+                 "tum (t x y z qx qy qz qw)")
+      ->check(CLI::IsMember({"kitti", "tum"}))
+      ->capture_default_str();
+  app.add_flag("--json", json, "Print one JSON object instead of the table");
+  app.add_option("--plot", plot_path, "Write a top-view plot; FILE.svg or FILE.png");
+  app.add_option("--align", align, "Alignment before the ATE: se3, sim3 or none")
+      ->check(CLI::IsMember({"se3", "sim3", "none"}))
+      ->capture_default_str();
+  app.add_option("--rpe-delta", rpe_delta, "Frame offset of the RPE pairs")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : kExitInputError;
+  }
+
+  if (!plot_path.empty() && litamin2::eval_tool::plot_format(plot_path).empty()) {
+    std::cerr << "litamin2-eval: error: --plot " << plot_path
+              << ": unsupported plot format (use a .svg or .png file name)\n";
+    return kExitInputError;
+  }
+
+  Trajectory gt;
+  Trajectory est;
+  try {
+    gt = read_trajectory(gt_path, format);
+  } catch (const litamin2::io::IoError& e) {  // what() starts with the path
+    std::cerr << "litamin2-eval: error: cannot read ground truth: " << e.what() << '\n';
+    return kExitInputError;
+  } catch (const std::exception& e) {
+    std::cerr << "litamin2-eval: error: cannot read ground truth " << gt_path << ": " << e.what()
+              << '\n';
+    return kExitInputError;
+  }
+  try {
+    est = read_trajectory(est_path, format);
+  } catch (const litamin2::io::IoError& e) {
+    std::cerr << "litamin2-eval: error: cannot read estimate: " << e.what() << '\n';
+    return kExitInputError;
+  } catch (const std::exception& e) {
+    std::cerr << "litamin2-eval: error: cannot read estimate " << est_path << ": " << e.what()
+              << '\n';
+    return kExitInputError;
+  }
+  if (gt.poses.empty()) {
+    std::cerr << "litamin2-eval: error: ground truth " << gt_path << " holds no poses\n";
+    return kExitInputError;
+  }
+  if (gt.poses.size() != est.poses.size()) {
+    std::cerr << "litamin2-eval: error: pose counts differ: estimate " << est_path << " has "
+              << est.poses.size() << " poses, ground truth " << gt_path << " has "
+              << gt.poses.size() << '\n';
+    return kExitInputError;
+  }
+  for (std::size_t i = 0; i < gt.times.size() && i < est.times.size(); ++i) {
+    if (std::abs(gt.times[i] - est.times[i]) > 0.01) {
+      std::cerr << "litamin2-eval: warning: timestamps of pose " << i << " differ (" << gt.times[i]
+                << " in " << gt_path << ", " << est.times[i] << " in " << est_path
+                << "); poses are paired by line\n";
+      break;
+    }
+  }
+
+  namespace le = litamin2::eval;
+  litamin2::eval_tool::Report report;
+  report.gt_path = gt_path;
+  report.est_path = est_path;
+  report.format = format;
+  report.alignment = align;
+  report.poses = gt.poses.size();
+  report.gt_length_m = le::trajectory_distances(gt.poses).back();
+  report.kitti = le::compute_kitti_metrics(gt.poses, est.poses);
+  const le::AteAlignment mode = align == "sim3"   ? le::AteAlignment::kSim3
+                                : align == "none" ? le::AteAlignment::kNone
+                                                  : le::AteAlignment::kSE3;
+  report.ate = le::compute_ate(gt.poses, est.poses, mode);
+  report.rpe = le::compute_rpe(gt.poses, est.poses, rpe_delta);
+
+  if (json) {
+    litamin2::eval_tool::print_json(std::cout, report);
+  } else {
+    litamin2::eval_tool::print_table(std::cout, report);
+  }
+
+  if (!plot_path.empty()) {
+    try {
+      litamin2::eval_tool::write_trajectory_plot(plot_path, gt.poses, est.poses);
+    } catch (const std::exception& e) {
+      std::cerr << "litamin2-eval: error: cannot write plot: " << e.what() << '\n';
+      return kExitInputError;
+    }
+    if (!json) std::cout << "\nplot written to " << plot_path << '\n';
+  }
+  return 0;
+}
