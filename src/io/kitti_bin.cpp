@@ -103,6 +103,7 @@ void apply_vertical_angle_correction(PointCloud& cloud, double angle_deg) {
 
 PointCloud read_kitti_bin(const std::string& path, const KittiBinOptions& options) {
   const std::string bytes = read_file_bytes(path);
+  if (bytes.empty()) throw IoError(path, "empty file (0 bytes), not a scan");
   KittiBinLayout layout = options.layout;
   if (layout == KittiBinLayout::Auto) layout = detect_layout(path, bytes);
   const std::size_t stride = layout == KittiBinLayout::XYZI ? 4 : 3;

@@ -69,6 +69,7 @@ std::vector<Eigen::Isometry3d> read_kitti_poses(const std::string& path) {
     }
     poses.push_back(pose);
   }
+  if (poses.empty()) throw IoError(path, "empty file: no poses");
   return poses;
 }
 
@@ -114,6 +115,7 @@ std::vector<TimedPose> read_tum(const std::string& path) {
     tp.pose.translation() = Eigen::Vector3d(v[1], v[2], v[3]);
     poses.push_back(tp);
   }
+  if (poses.empty()) throw IoError(path, "no poses (empty or comments only)");
   return poses;
 }
 

@@ -40,8 +40,8 @@ struct KittiBinOptions {
 /// record read as XYZ is bad if a coordinate is not finite. The layout with the smaller fraction
 /// of bad records wins; on a tie (typically both zero) the layout whose consecutive points are
 /// closer to each other (median distance; real scans are stored in scan order) wins, XYZI on an
-/// exact tie. Throws IoError if the file is missing/unreadable or its size fits neither layout
-/// (or the layout given).
+/// exact tie. Throws IoError if the file is missing/unreadable/empty or its size fits neither
+/// layout (or the layout given).
 PointCloud read_kitti_bin(const std::string& path, const KittiBinOptions& options = {});
 
 /// Applies the vertical angle correction of KittiBinOptions (in degrees) to every point, in place.

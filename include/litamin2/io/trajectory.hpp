@@ -19,7 +19,7 @@ struct TimedPose {
 /// numbers. CRLF line ends and trailing blank lines are accepted; the matrix is taken as is (not
 /// re-orthonormalised). Throws IoError naming the file and the 1-based line number for a line
 /// with the wrong number of values, a non-number or a blank line followed by more data, and
-/// IoError for a missing/unreadable file.
+/// IoError for a missing/unreadable file or one without any pose.
 std::vector<Eigen::Isometry3d> read_kitti_poses(const std::string& path);
 
 /// Writes a KITTI pose file (12 values per line, "%.16e", i.e. lossless double precision, LF line
@@ -28,7 +28,8 @@ void write_kitti_poses(const std::string& path, const std::vector<Eigen::Isometr
 
 /// Reads a TUM trajectory: "t x y z qx qy qz qw" per line; lines starting with '#' and blank lines
 /// are skipped, CRLF accepted. Quaternions are normalised; a zero or non-finite quaternion, a line
-/// with a count other than 8 or a non-number throws IoError naming file and line number.
+/// with a count other than 8 or a non-number throws IoError naming file and line number; so does
+/// a file without any pose.
 std::vector<TimedPose> read_tum(const std::string& path);
 
 /// Writes a TUM trajectory ("%.17g" time, "%.16e" values: lossless). The quaternion written is the

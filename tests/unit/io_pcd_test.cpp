@@ -1,0 +1,165 @@
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "litamin2/io/io_error.hpp"
+#include "litamin2/io/pcd.hpp"
+
+namespace fs = std::filesystem;
+using litamin2::PointCloud;
+using namespace litamin2::io;
+
+namespace {
+
+fs::path temp_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir = fs::path(LITAMIN2_BINARY_DIR) / "io_test_tmp" /
+                       (std::string(info->test_suite_name()) + "_" + info->name());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+template <typename T>
+void put(std::string& out, T value) {
+  char buf[sizeof(T)];
+  std::memcpy(buf, &value, sizeof(T));
+  out.append(buf, sizeof(T));
+}
+
+template <typename F>
+void expect_io_error(F&& f, const std::string& must_contain, const std::string& also = "") {
+  try {
+    f();
+    ADD_FAILURE() << "expected IoError containing '" << must_contain << "'";
+  } catch (const IoError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(must_contain), std::string::npos) << what;
+    if (!also.empty()) {
+      EXPECT_NE(what.find(also), std::string::npos) << what;
+    }
+  }
+}
+
+PointCloud sample(bool with_intensity) {
+  PointCloud cloud;
+  for (int i = 0; i < 20; ++i) {
+    cloud.points.emplace_back(0.5f * i, -1.25f * i, 3.0f + 0.001f * i);
+    if (with_intensity) cloud.intensities.push_back(0.01f * i);
+  }
+  return cloud;
+}
+
+const std::string kHeader3 =
+    "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n";
+
+}  // namespace
+
+TEST(IoPcd, BinaryRoundTripWithAndWithoutIntensity) {
+  const fs::path dir = temp_dir();
+  for (bool with_i : {true, false}) {
+    const fs::path file = dir / (with_i ? "i.pcd" : "noi.pcd");
+    const PointCloud cloud = sample(with_i);
+    write_pcd_binary(file.string(), cloud);
+    const PointCloud back = read_pcd(file.string());
+    ASSERT_EQ(back.size(), cloud.size());
+    EXPECT_EQ(back.has_intensities(), with_i);
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      EXPECT_EQ(back.points[i], cloud.points[i]);
+      if (with_i) {
+        EXPECT_EQ(back.intensities[i], cloud.intensities[i]);
+      }
+    }
+  }
+}
+
+TEST(IoPcd, EmptyCloudRoundTrip) {
+  const fs::path file = temp_dir() / "empty_cloud.pcd";
+  write_pcd_binary(file.string(), PointCloud{});
+  EXPECT_TRUE(read_pcd(file.string()).empty());
+}
+
+TEST(IoPcd, AsciiWithExtraAndMultiCountFields) {
+  const fs::path file = temp_dir() / "ascii.pcd";
+  write_text(file,
+             "# .PCD v0.7 - Point Cloud Data file format\r\n"
+             "VERSION 0.7\r\n"
+             "FIELDS hist x y z rgb intensity\r\n"
+             "SIZE 4 4 4 4 4 2\r\n"
+             "TYPE F F F F U U\r\n"
+             "COUNT 3 1 1 1 1 1\r\n"
+             "WIDTH 2\r\nHEIGHT 2\r\nVIEWPOINT 0 0 0 1 0 0 0\r\nPOINTS 4\r\nDATA ascii\r\n"
+             "9 9 9 1.5 2.5 3.5 4278190080 100\r\n"
+             "9 9 9 nan nan nan 0 0\r\n"
+             "9 9 9 -1 -2 -3 0 65535\r\n"
+             "9 9 9 4e1 5 6 0 7\r\n");
+  const PointCloud cloud = read_pcd(file.string());
+  ASSERT_EQ(cloud.size(), 3u);  // the NaN point is dropped
+  ASSERT_EQ(cloud.intensities.size(), 3u);
+  EXPECT_EQ(cloud.points[0], Eigen::Vector3f(1.5f, 2.5f, 3.5f));
+  EXPECT_EQ(cloud.points[1], Eigen::Vector3f(-1, -2, -3));
+  EXPECT_EQ(cloud.points[2], Eigen::Vector3f(40, 5, 6));
+  EXPECT_EQ(cloud.intensities[0], 100.0f);
+  EXPECT_EQ(cloud.intensities[1], 65535.0f);
+}
+
+TEST(IoPcd, BinaryDoubleXyzU8IntensityAndSkippedFields) {
+  const fs::path file = temp_dir() / "bin.pcd";
+  std::string data =
+      "VERSION .7\nFIELDS normal x y z _ intensity\nSIZE 4 8 8 8 1 1\nTYPE F F F F U U\n"
+      "COUNT 3 1 1 1 5 1\nWIDTH 3\nHEIGHT 1\nPOINTS 3\nDATA binary\n";
+  for (int i = 0; i < 3; ++i) {
+    for (int k = 0; k < 3; ++k) put<float>(data, -7.0f);
+    put<double>(data, 1.0 + i);
+    put<double>(data, 10.0 + i);
+    put<double>(data, 100.0 + i);
+    for (int k = 0; k < 5; ++k) put<std::uint8_t>(data, 0xAB);
+    put<std::uint8_t>(data, static_cast<std::uint8_t>(200 + i));
+  }
+  write_text(file, data);
+  const PointCloud cloud = read_pcd(file.string());
+  ASSERT_EQ(cloud.size(), 3u);
+  EXPECT_EQ(cloud.points[2], Eigen::Vector3f(3, 12, 102));
+  EXPECT_EQ(cloud.intensities[2], 202.0f);
+}
+
+TEST(IoPcd, ErrorsNameTheFile) {
+  const fs::path dir = temp_dir();
+  auto check = [&](const std::string& name, const std::string& content, const std::string& also) {
+    write_text(dir / name, content);
+    expect_io_error([&] { read_pcd((dir / name).string()); }, name, also);
+  };
+  check("compressed.pcd", kHeader3 + "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA binary_compressed\n",
+        "binary_compressed is not supported");
+  check("mismatch.pcd", kHeader3 + "WIDTH 3\nHEIGHT 2\nPOINTS 5\nDATA ascii\n", "POINTS");
+  std::string truncated = kHeader3 + "WIDTH 3\nHEIGHT 1\nPOINTS 3\nDATA binary\n";
+  for (int i = 0; i < 8; ++i) put<float>(truncated, 1.0f);  // 8 of 9 floats
+  check("truncated_bin.pcd", truncated, "truncated");
+  check("truncated_ascii.pcd", kHeader3 + "WIDTH 3\nHEIGHT 1\nPOINTS 3\nDATA ascii\n1 2 3\n4 5 6\n",
+        "truncated");
+  check("short_line.pcd", kHeader3 + "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n1 2\n", "line 11");
+  check("bad_number.pcd", kHeader3 + "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n1 2 zz\n", "zz");
+  check("no_z.pcd",
+        "FIELDS x y\nSIZE 4 4\nTYPE F F\nCOUNT 1 1\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n1 2\n",
+        "'z'");
+  check("int_xyz.pcd",
+        "FIELDS x y z\nSIZE 4 4 4\nTYPE I I I\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n1 2 3\n",
+        "TYPE");
+  check("size_mismatch.pcd", "FIELDS x y z\nSIZE 4 4\nTYPE F F F\nWIDTH 1\nDATA ascii\n1 2 3\n",
+        "SIZE");
+  check("empty.pcd", "", "DATA");
+  check("garbage.pcd", std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16), "garbage.pcd");
+  expect_io_error([&] { read_pcd((dir / "missing.pcd").string()); }, "missing.pcd");
+  expect_io_error([&] { write_pcd_binary((dir / "nodir" / "out.pcd").string(), sample(false)); },
+                  "out.pcd");
+}
