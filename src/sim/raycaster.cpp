@@ -1,0 +1,360 @@
+#include "litamin2/sim/raycaster.hpp"
+
+#include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+#include "litamin2/sim/random.hpp"
+
+namespace litamin2::sim {
+namespace {
+
+void embree_error(void* /*user*/, RTCError code, const char* str) {
+  // Must not throw through Embree's C frames; report instead.
+  if (code != RTC_ERROR_NONE)
+    std::fprintf(stderr, "Embree error %d: %s\n", static_cast<int>(code), str ? str : "");
+}
+
+struct Tile {
+  RTCScene scene = nullptr;    // instancing mode: the tile's own scene
+  RTCGeometry geom = nullptr;  // flat mode: the tile's triangle geometry
+  std::vector<Material> materials;
+  std::vector<float> reflectivity;
+  unsigned instance = RTC_INVALID_GEOMETRY_ID;  // id in the top scene when active
+  std::uint64_t last_used = 0;
+};
+
+}  // namespace
+
+struct Raycaster::Impl {
+  const World& world;
+  RaycasterOptions opt;
+  RTCDevice device = nullptr;
+  RTCScene top = nullptr;
+  std::map<TileKey, Tile> tiles;
+  std::vector<const Tile*> by_instance;  // instance geometry id -> tile
+  std::uint64_t clock = 0;
+  std::size_t active = 0, active_tris = 0;
+
+  Impl(const World& w, const RaycasterOptions& o) : world(w), opt(o) {
+    device = rtcNewDevice(nullptr);
+    if (!device) throw std::runtime_error("Embree: cannot create device");
+    rtcSetDeviceErrorFunction(device, embree_error, nullptr);
+    top = rtcNewScene(device);
+    rtcCommitScene(top);
+  }
+
+  ~Impl() {
+    for (auto& [k, t] : tiles) {
+      (void)k;
+      release(t);
+    }
+    if (top) rtcReleaseScene(top);
+    if (device) rtcReleaseDevice(device);
+  }
+
+  static void release(Tile& t) {
+    if (t.scene) rtcReleaseScene(t.scene);
+    if (t.geom) rtcReleaseGeometry(t.geom);
+    t.scene = nullptr;
+    t.geom = nullptr;
+  }
+
+  Tile make_tile(const TriangleMesh& mesh) {
+    Tile t;
+    if (opt.instancing) {
+      t.scene = rtcNewScene(device);
+      rtcSetSceneBuildQuality(t.scene, RTC_BUILD_QUALITY_MEDIUM);
+    }
+    if (!mesh.empty()) {
+      RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                            RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                            mesh.vertices.size()));
+      for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+        v[3 * i] = mesh.vertices[i].x();
+        v[3 * i + 1] = mesh.vertices[i].y();
+        v[3 * i + 2] = mesh.vertices[i].z();
+      }
+      auto* idx = static_cast<unsigned*>(
+          rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                  3 * sizeof(unsigned), mesh.triangles.size()));
+      for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+        for (int k = 0; k < 3; ++k) idx[3 * i + k] = mesh.triangles[i][k];
+      }
+      rtcCommitGeometry(g);
+      if (opt.instancing) {
+        rtcAttachGeometryByID(t.scene, g, 0);
+        rtcReleaseGeometry(g);
+      } else {
+        t.geom = g;  // keeps the reference
+      }
+    }
+    if (t.scene) rtcCommitScene(t.scene);
+    t.materials = mesh.materials;
+    t.reflectivity = mesh.reflectivity;
+    return t;
+  }
+
+  void prepare(const Eigen::Vector3d& position, double range) {
+    ++clock;
+    const auto needed = world.tiles_near(position.head<2>(), range + world.max_object_radius());
+    // Build the missing tiles' meshes in parallel, then their Embree scenes.
+    std::vector<TileKey> missing;
+    for (const auto& k : needed) {
+      if (!tiles.count(k)) missing.push_back(k);
+    }
+    std::vector<TriangleMesh> meshes(missing.size());
+    auto build = [&](std::size_t i) { meshes[i] = world.build_tile(missing[i]); };
+    if (opt.parallel) {
+      tbb::parallel_for(std::size_t{0}, missing.size(), build);
+    } else {
+      for (std::size_t i = 0; i < missing.size(); ++i) build(i);
+    }
+    for (std::size_t i = 0; i < missing.size(); ++i) {
+      tiles.emplace(missing[i], make_tile(meshes[i]));
+      meshes[i] = TriangleMesh();
+    }
+    bool changed = false;
+    std::vector<bool> keep_flags;
+    // Mark needed tiles.
+    std::map<TileKey, bool> need;
+    for (const auto& k : needed) need[k] = true;
+    for (auto& [k, t] : tiles) {
+      const bool n = need.count(k) > 0;
+      if (n) t.last_used = clock;
+      if (n && t.instance == RTC_INVALID_GEOMETRY_ID && (t.scene || t.geom)) {
+        if (opt.instancing) {
+          RTCGeometry inst = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+          rtcSetGeometryInstancedScene(inst, t.scene);
+          const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+          rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
+          rtcCommitGeometry(inst);
+          t.instance = rtcAttachGeometry(top, inst);
+          rtcReleaseGeometry(inst);
+        } else {
+          t.instance = rtcAttachGeometry(top, t.geom);
+        }
+        if (by_instance.size() <= t.instance) by_instance.resize(t.instance + 1, nullptr);
+        by_instance[t.instance] = &t;
+        changed = true;
+      } else if (!n && t.instance != RTC_INVALID_GEOMETRY_ID) {
+        rtcDetachGeometry(top, t.instance);
+        by_instance[t.instance] = nullptr;
+        t.instance = RTC_INVALID_GEOMETRY_ID;
+        changed = true;
+      }
+    }
+    if (changed) rtcCommitScene(top);
+    // Evict least recently used inactive tiles beyond the cache size.
+    if (tiles.size() > opt.max_cached_tiles) {
+      std::vector<std::pair<std::uint64_t, TileKey>> inactive;
+      for (const auto& [k, t] : tiles) {
+        if (t.instance == RTC_INVALID_GEOMETRY_ID) inactive.push_back({t.last_used, k});
+      }
+      std::sort(inactive.begin(), inactive.end());
+      std::size_t excess = tiles.size() - opt.max_cached_tiles;
+      for (std::size_t i = 0; i < inactive.size() && excess > 0; ++i, --excess) {
+        auto it = tiles.find(inactive[i].second);
+        release(it->second);
+        tiles.erase(it);
+      }
+    }
+    active = 0;
+    active_tris = 0;
+    for (const auto& [k, t] : tiles) {
+      (void)k;
+      if (t.instance != RTC_INVALID_GEOMETRY_ID) {
+        ++active;
+        active_tris += t.materials.size();
+      }
+    }
+  }
+
+  /// Casts one ray; fills hit and returns true on a hit.
+  bool intersect(const Eigen::Vector3f& o, const Eigen::Vector3f& d, float tfar,
+                 RTCIntersectContext* ctx, float& t, Eigen::Vector3f& n, const Tile*& tile,
+                 unsigned& prim) const {
+    RTCRayHit rh;
+    rh.ray.org_x = o.x();
+    rh.ray.org_y = o.y();
+    rh.ray.org_z = o.z();
+    rh.ray.dir_x = d.x();
+    rh.ray.dir_y = d.y();
+    rh.ray.dir_z = d.z();
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = tfar;
+    rh.ray.time = 0.0f;
+    rh.ray.mask = 0xffffffffu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(top, ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    t = rh.ray.tfar;
+    n = Eigen::Vector3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+    const float len = n.norm();
+    n = len > 0 ? Eigen::Vector3f(n / len) : Eigen::Vector3f::UnitZ();
+    if (n.dot(d) > 0) n = -n;
+    const unsigned inst = opt.instancing ? rh.hit.instID[0] : rh.hit.geomID;
+    tile = inst < by_instance.size() ? by_instance[inst] : nullptr;
+    prim = rh.hit.primID;
+    return tile != nullptr && prim < tile->materials.size();
+  }
+};
+
+Raycaster::Raycaster(const World& world, const RaycasterOptions& options)
+    : impl_(std::make_unique<Impl>(world, options)) {}
+
+Raycaster::~Raycaster() = default;
+
+void Raycaster::prepare(const Eigen::Vector3d& position, double range) {
+  impl_->prepare(position, range);
+}
+
+std::optional<RayHit> Raycaster::cast(const Eigen::Vector3d& origin,
+                                      const Eigen::Vector3d& direction, double max_range) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  float t;
+  Eigen::Vector3f n;
+  const Tile* tile = nullptr;
+  unsigned prim = 0;
+  const Eigen::Vector3f d = direction.normalized().cast<float>();
+  if (!impl_->intersect(origin.cast<float>(), d, static_cast<float>(max_range), &ctx, t, n, tile,
+                        prim)) {
+    return std::nullopt;
+  }
+  RayHit hit;
+  hit.range = t;
+  hit.normal = n.cast<double>();
+  hit.material = tile->materials[prim];
+  hit.reflectivity = tile->reflectivity[prim];
+  return hit;
+}
+
+PointCloud Raycaster::scan(const Eigen::Isometry3d& sensor_pose, const LidarModel& model,
+                           std::uint64_t scan_seed) {
+  impl_->prepare(sensor_pose.translation(), model.max_range);
+  const int beams = static_cast<int>(model.beams());
+  const int steps = model.azimuth_steps;
+  std::vector<float> cos_el(beams), sin_el(beams), cos_az(steps), sin_az(steps);
+  for (int b = 0; b < beams; ++b) {
+    const double e = model.elevations_deg[b] * M_PI / 180.0;
+    cos_el[b] = static_cast<float>(std::cos(e));
+    sin_el[b] = static_cast<float>(std::sin(e));
+  }
+  for (int a = 0; a < steps; ++a) {
+    const double az = 2.0 * M_PI * a / steps;
+    cos_az[a] = static_cast<float>(std::cos(az));
+    sin_az[a] = static_cast<float>(std::sin(az));
+  }
+  const Eigen::Matrix3f R = sensor_pose.linear().cast<float>();
+  const Eigen::Vector3f origin = sensor_pose.translation().cast<float>();
+  // Slots [beam][azimuth]: x, y, z, intensity; NaN x = no return.
+  std::vector<Eigen::Vector4f> slots(static_cast<std::size_t>(beams) * steps);
+  const double ref2 = model.reference_range * model.reference_range;
+  const Impl& impl = *impl_;
+  const float max_range = static_cast<float>(model.max_range);
+  // Turns one hit into a point (or no return) in slot k.
+  auto shade = [&](std::size_t k, const Eigen::Vector3f& ds, const Eigen::Vector3f& dw, float t,
+                   Eigen::Vector3f n, unsigned id, unsigned prim) {
+    Eigen::Vector4f& out = slots[k];
+    const Tile* tile = id < impl.by_instance.size() ? impl.by_instance[id] : nullptr;
+    if (!tile || prim >= tile->materials.size()) return;
+    const float len = n.norm();
+    n = len > 0 ? Eigen::Vector3f(n / len) : Eigen::Vector3f::UnitZ();
+    Rng rng(hash_combine(scan_seed, k));
+    const MaterialProperties mp = material_properties(tile->materials[prim]);
+    const double refl = tile->reflectivity[prim];
+    const double cos_inc = std::abs(n.dot(dw));
+    // Echo power relative to the detection threshold; soft threshold around 1.
+    const double power = refl * std::sqrt(cos_inc) * ref2 / (double(t) * t);
+    const double p_detect = std::clamp((power - 0.5) / 1.5, 0.0, 1.0);
+    if (rng.uniform() >= p_detect) return;
+    if (rng.uniform() < model.dropout + mp.dropout) return;
+    const double range = t + model.range_noise_sigma * rng.normal();
+    if (range < model.min_range || range > model.max_range) return;
+    const double intensity =
+        std::clamp(refl * (0.35 + 0.65 * cos_inc) + 0.02 * rng.normal(), 0.0, 1.0);
+    out << ds * static_cast<float>(range), static_cast<float>(intensity);
+  };
+  auto cast_block = [&](const tbb::blocked_range<int>& r) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(32) RTCRayHit8 rh;
+    alignas(32) int valid[8];
+    for (int b = 0; b < beams; ++b) {
+      for (int a0 = r.begin(); a0 < r.end(); a0 += 8) {
+        const int na = std::min(8, r.end() - a0);
+        Eigen::Vector3f ds[8], dw[8];
+        for (int i = 0; i < 8; ++i) {
+          valid[i] = i < na ? -1 : 0;
+          const int a = a0 + (i < na ? i : 0);
+          ds[i] = Eigen::Vector3f(cos_el[b] * cos_az[a], cos_el[b] * sin_az[a], sin_el[b]);
+          dw[i] = R * ds[i];
+          rh.ray.org_x[i] = origin.x();
+          rh.ray.org_y[i] = origin.y();
+          rh.ray.org_z[i] = origin.z();
+          rh.ray.dir_x[i] = dw[i].x();
+          rh.ray.dir_y[i] = dw[i].y();
+          rh.ray.dir_z[i] = dw[i].z();
+          rh.ray.tnear[i] = 0.0f;
+          rh.ray.tfar[i] = max_range;
+          rh.ray.time[i] = 0.0f;
+          rh.ray.mask[i] = 0xffffffffu;
+          rh.ray.id[i] = 0;
+          rh.ray.flags[i] = 0;
+          rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+          rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+        }
+        rtcIntersect8(valid, impl.top, &ctx, &rh);
+        for (int i = 0; i < na; ++i) {
+          const std::size_t k = static_cast<std::size_t>(b) * steps + a0 + i;
+          slots[k].x() = std::numeric_limits<float>::quiet_NaN();
+          if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+          const unsigned id = impl.opt.instancing ? rh.hit.instID[0][i] : rh.hit.geomID[i];
+          shade(k, ds[i], dw[i], rh.ray.tfar[i],
+                Eigen::Vector3f(rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]), id,
+                rh.hit.primID[i]);
+        }
+      }
+    }
+  };
+  if (impl_->opt.parallel) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, steps, 64), cast_block);
+  } else {
+    cast_block(tbb::blocked_range<int>(0, steps));
+  }
+  PointCloud cloud;
+  cloud.points.reserve(slots.size());
+  cloud.intensities.reserve(slots.size());
+  for (const auto& s : slots) {
+    if (std::isnan(s.x())) continue;
+    cloud.points.push_back(s.head<3>());
+    cloud.intensities.push_back(s.w());
+  }
+  return cloud;
+}
+
+std::size_t Raycaster::cached_tiles() const {
+  return impl_->tiles.size();
+}
+std::size_t Raycaster::active_tiles() const {
+  return impl_->active;
+}
+std::size_t Raycaster::active_triangles() const {
+  return impl_->active_tris;
+}
+
+}  // namespace litamin2::sim
