@@ -32,17 +32,22 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
   ++out.correspondences;
   if (config.mode != CostMode::IcpCov) return;
 
-  // Cov term, Eq. 4: E_cov = f^2, rotation only.
+  // Cov term, Eq. 4: E_cov = f^2 (or f, Table 1), rotation only.
   const Eigen::Matrix3d rotated_cov_inv = rotation * source.cov_inv * rotation.transpose();
   const CovShape shape =
       evaluate_cov_shape(rotated_cov_inv, rotated_cov, target.cov, target.cov_inv);
-  const double energy = shape.f * shape.f;
+  const bool squared = config.cov_energy == CovEnergy::Squared;
+  const double energy = squared ? shape.f * shape.f : shape.f;
   const double w_cov = robust_weight(energy, config.sigma_cov);
+  // dE/df and d2E/df2 of the chosen form: (2f, 2) or (1, 0).
+  const double de_df = squared ? 2.0 * shape.f : 1.0;
   out.cost += w_cov * energy;
-  out.gradient.head<3>() += w_cov * 2.0 * shape.f * shape.gradient;
-  out.hessian.topLeftCorner<3, 3>() += w_cov * 2.0 * shape.gradient * shape.gradient.transpose();
-  if (config.cov_hessian == CovHessian::Full) {
-    const Eigen::Matrix3d curvature = w_cov * 2.0 * shape.f * shape.hessian;
+  out.gradient.head<3>() += w_cov * de_df * shape.gradient;
+  if (squared) {
+    out.hessian.topLeftCorner<3, 3>() += w_cov * 2.0 * shape.gradient * shape.gradient.transpose();
+  }
+  if (config.cov_hessian == CovHessian::Full || !squared) {
+    const Eigen::Matrix3d curvature = w_cov * de_df * shape.hessian;
     out.hessian.topLeftCorner<3, 3>() += curvature;
     out.cov_curvature += curvature;
   }

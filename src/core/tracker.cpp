@@ -1,5 +1,7 @@
 #include "litamin2/core/tracker.hpp"
 
+#include "litamin2/core/scan_registration.hpp"
+
 #include <Eigen/Cholesky>
 #include <chrono>
 #include <cmath>
@@ -42,18 +44,15 @@ bool Tracker::is_keyframe(const Eigen::Isometry3d& pose) const {
 
 FrameResult Tracker::process(const PointCloud& scan) {
   FrameResult frame;
-  auto start = std::chrono::steady_clock::now();
-  source_ = voxelizer_.voxelize(scan);
-  frame.source_distributions = static_cast<int>(source_.size());
-  frame.times.voxelize_ms = elapsed_ms(start);
-
   const Eigen::Isometry3d predicted = pose_ * velocity_;
   Eigen::Isometry3d estimate = predicted;
   if (frames_ > 0 && !map_.empty() && search_) {
-    start = std::chrono::steady_clock::now();
-    const RegistrationResult result =
-        register_distributions(source_, map_, *search_, predicted, config_.registration);
-    frame.times.register_ms = elapsed_ms(start);
+    const ScanRegistration registration =
+        register_scan(scan, voxelizer_, map_, *search_, predicted, config_.registration);
+    const RegistrationResult& result = registration.result;
+    source_ = registration.source;
+    frame.times.voxelize_ms = registration.voxelize_ms;
+    frame.times.register_ms = registration.register_ms;
     frame.iterations = result.iterations;
     frame.correspondences = result.correspondences;
     if (result.valid) {
@@ -61,12 +60,17 @@ FrameResult Tracker::process(const PointCloud& scan) {
       frame.registered = true;
       frame.covariance = covariance_from_hessian(result);
     }
+  } else {
+    const auto start = std::chrono::steady_clock::now();
+    source_ = voxelizer_.voxelize(scan, predicted);
+    frame.times.voxelize_ms = elapsed_ms(start);
   }
+  frame.source_distributions = static_cast<int>(source_.size());
 
   // A frame that could not be registered also goes into the map, so that tracking can resume.
   frame.keyframe = frames_ == 0 || !frame.registered || is_keyframe(estimate);
   if (frame.keyframe) {
-    start = std::chrono::steady_clock::now();
+    const auto start = std::chrono::steady_clock::now();
     map_.insert(scan, estimate);
     map_.remove_far(estimate.translation());
     search_ = make_correspondence_search(config_.registration.correspondence, map_);

@@ -87,6 +87,8 @@ const std::vector<std::pair<std::string, CostMode>> kModes = {{"icp", CostMode::
                                                               {"icp+cov", CostMode::IcpCov}};
 const std::vector<std::pair<std::string, CovHessian>> kCovHessians = {
     {"full", CovHessian::Full}, {"gauss_newton", CovHessian::GaussNewton}};
+const std::vector<std::pair<std::string, CovEnergy>> kCovEnergies = {
+    {"squared", CovEnergy::Squared}, {"linear", CovEnergy::Linear}};
 const std::vector<std::pair<std::string, CorrespondenceMethod>> kCorrespondences = {
     {"voxel27", CorrespondenceMethod::Voxel27}, {"kdtree", CorrespondenceMethod::KdTree}};
 const std::vector<std::pair<std::string, RegularizationMethod>> kRegularizations = {
@@ -137,6 +139,7 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node) {
   registration.read("sigma_icp", r.sigma_icp);
   registration.read("sigma_cov", r.sigma_cov);
   registration.read("lambda", r.lambda);
+  registration.read_enum("cov_energy", r.cov_energy, kCovEnergies);
   registration.read_enum("cov_hessian", r.cov_hessian, kCovHessians);
   registration.read_enum("correspondence", r.correspondence, kCorrespondences);
   registration.read("max_correspondence_distance", r.max_correspondence_distance);
@@ -145,6 +148,9 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node) {
   registration.read("translation_tolerance", r.translation_tolerance);
   registration.read("min_correspondences", r.min_correspondences);
   registration.read("block_size", r.block_size);
+  registration.read("regrid_translation", r.regrid_translation);
+  registration.read("regrid_rotation_deg", r.regrid_rotation_deg);
+  registration.read("max_regrids", r.max_regrids);
   registration.reject_unknown();
 
   Section keyframe(root.child("keyframe"), "keyframe");
@@ -207,6 +213,12 @@ void validate(const TrackerConfig& c) {
   require(r.min_correspondences >= 6, "registration.min_correspondences", r.min_correspondences,
           "at least 6");
   require(r.block_size >= 1, "registration.block_size", r.block_size, "at least 1");
+  require(r.regrid_translation > 0.0, "registration.regrid_translation", r.regrid_translation,
+          "positive");
+  require(r.regrid_rotation_deg > 0.0, "registration.regrid_rotation_deg", r.regrid_rotation_deg,
+          "positive");
+  require(r.max_regrids >= 0 && r.max_regrids <= 100, "registration.max_regrids", r.max_regrids,
+          "0 to 100");
   require(c.keyframe.distance >= 0.0, "keyframe.distance", c.keyframe.distance, "at least 0");
   require(c.keyframe.angle_deg >= 0.0, "keyframe.angle_deg", c.keyframe.angle_deg, "at least 0");
 }
@@ -234,6 +246,7 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "sigma_icp" << YAML::Value << r.sigma_icp;
   out << YAML::Key << "sigma_cov" << YAML::Value << r.sigma_cov;
   out << YAML::Key << "lambda" << YAML::Value << r.lambda;
+  out << YAML::Key << "cov_energy" << YAML::Value << enum_name(r.cov_energy, kCovEnergies);
   out << YAML::Key << "cov_hessian" << YAML::Value << enum_name(r.cov_hessian, kCovHessians);
   out << YAML::Key << "correspondence" << YAML::Value
       << enum_name(r.correspondence, kCorrespondences);
@@ -243,6 +256,9 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "translation_tolerance" << YAML::Value << r.translation_tolerance;
   out << YAML::Key << "min_correspondences" << YAML::Value << r.min_correspondences;
   out << YAML::Key << "block_size" << YAML::Value << r.block_size;
+  out << YAML::Key << "regrid_translation" << YAML::Value << r.regrid_translation;
+  out << YAML::Key << "regrid_rotation_deg" << YAML::Value << r.regrid_rotation_deg;
+  out << YAML::Key << "max_regrids" << YAML::Value << r.max_regrids;
   out << YAML::EndMap;
   out << YAML::Key << "keyframe" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "distance" << YAML::Value << c.keyframe.distance;

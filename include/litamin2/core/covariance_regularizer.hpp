@@ -19,7 +19,7 @@ struct RegularizerConfig {
   /// Which remedy to apply.
   RegularizationMethod method = RegularizationMethod::EigenClamp;
   /// EigenClamp: floor of each eigenvalue relative to the largest.
-  double min_eigen_ratio = 1e-2;
+  double min_eigen_ratio = 1e-4;
   /// Plane: the small eigenvalue relative to the others (GICP uses 1e-3).
   double plane_epsilon = 1e-3;
   /// Absolute eigenvalue floor in m^2 for both methods (guards all-zero covariances).

@@ -17,6 +17,15 @@ enum class CovHessian {
   GaussNewton,
 };
 
+/// The Cov term's energy: the paper's Eq. 4 squares the bracket f, its Table 1 does not.
+/// sigma_cov = 3 is defined on Eq. 4's form.
+enum class CovEnergy {
+  /// E_cov = f^2 (Eq. 4).
+  Squared,
+  /// E_cov = f (Table 1); f >= 0 since it is twice a symmetric KL divergence.
+  Linear,
+};
+
 struct RegistrationConfig {
   /// Terms of the cost.
   CostMode mode = CostMode::IcpCov;
@@ -26,6 +35,8 @@ struct RegistrationConfig {
   double sigma_cov = 3.0;
   /// Added to the combined covariance before inversion (paper: 1e-6).
   double lambda = 1e-6;
+  /// Form of the Cov term's energy.
+  CovEnergy cov_energy = CovEnergy::Linear;
   /// Treatment of the Cov term's Hessian.
   CovHessian cov_hessian = CovHessian::Full;
   /// How the nearest map distribution is found.
@@ -40,6 +51,14 @@ struct RegistrationConfig {
   double translation_tolerance = 1e-4;
   /// Registration fails with fewer correspondences.
   int min_correspondences = 20;
+  /// The scan is voxelised in the map's grid at the pose estimate (see Voxelizer::voxelize);
+  /// when registration moves the pose farther than these tolerances from the pose the grid
+  /// was cut at, the scan is voxelised again at the new pose and registered again.
+  double regrid_translation = 0.02;
+  /// ... rotation tolerance of the regrid test, degrees.
+  double regrid_rotation_deg = 0.1;
+  /// At most this many re-voxelisations per scan.
+  int max_regrids = 10;
   /// Source distributions per parallel block. Fixed, so that the ordered reduction gives the
   /// same bits whatever the thread count.
   int block_size = 64;

@@ -34,7 +34,14 @@ class Voxelizer {
 
   /// Distributions of the scan's voxels, in the scan's frame, in order of first occupancy
   /// (deterministic for a given scan).
-  std::vector<Distribution> voxelize(const PointCloud& scan);
+  ///
+  /// The voxel grid is the one of the frame `grid_pose` moves the points to: pass the predicted
+  /// map pose of the scan so that its voxels cut surfaces where the map's voxels do. Voxels cut
+  /// in the sensor's own frame split walls and road differently from the map as the vehicle
+  /// moves, which biases large-voxel registration towards zero motion (on the shared KITTI
+  /// pair: 0.55 m instead of 0.70 m at 3 m voxels).
+  std::vector<Distribution> voxelize(
+      const PointCloud& scan, const Eigen::Isometry3d& grid_pose = Eigen::Isometry3d::Identity());
 
   const VoxelizerConfig& config() const { return config_; }
 
