@@ -112,6 +112,8 @@ TEST(IoScanSequence, KittiDatasetLayout) {
   const auto velo = seq.ground_truth_velo();
   ASSERT_TRUE(velo.has_value());
   EXPECT_NEAR((*velo)[2].translation().x(), 1.6, 0.02);
+  // A trailing slash still finds <dataset>/poses/07.txt.
+  EXPECT_TRUE(ScanSequence(seq_dir.string() + "/").ground_truth_cam().has_value());
   EXPECT_THROW(seq.load(3), std::out_of_range);
   EXPECT_THROW(seq.path(3), std::out_of_range);
   EXPECT_THROW(seq.timestamp(3), std::out_of_range);
