@@ -1,0 +1,213 @@
+// litamin2-odometry: LiTAMIN2 odometry over a recorded sequence of scans.
+
+#include "common/progress.hpp"
+#include "litamin2/core/tracker.hpp"
+#include "litamin2/eval/ate.hpp"
+#include "litamin2/eval/kitti_metrics.hpp"
+#include "litamin2/io/io_error.hpp"
+#include "litamin2/io/kitti_calib.hpp"
+#include "litamin2/io/kitti_sequence.hpp"
+#include "litamin2/io/trajectory.hpp"
+#include "litamin2/version.hpp"
+#include "odometry/run_stats.hpp"
+
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <thread>
+
+namespace fs = std::filesystem;
+using namespace litamin2;
+
+namespace {
+
+struct Options {
+  std::string input;
+  std::string output;
+  std::string config_file;
+  std::string mode;
+  double voxel_size = 0.0;
+  int threads = 1;
+  std::string kitti_calib;
+  double vertical_correction_deg = 0.0;
+  std::string frames;
+  bool quiet = false;
+};
+
+/// Parses "A:B" (B exclusive, either side optional) against a sequence of `size` scans.
+std::pair<std::size_t, std::size_t> parse_frames(const std::string& text, std::size_t size) {
+  if (text.empty()) return {0, size};
+  const auto colon = text.find(':');
+  if (colon == std::string::npos)
+    throw CLI::ValidationError("--frames", "expected A:B, got " + text);
+  const std::string a = text.substr(0, colon), b = text.substr(colon + 1);
+  const std::size_t first = a.empty() ? 0 : std::stoul(a);
+  const std::size_t last = b.empty() ? size : std::min<std::size_t>(std::stoul(b), size);
+  if (first >= last)
+    throw CLI::ValidationError("--frames", text + " selects no scan of " + std::to_string(size));
+  return {first, last};
+}
+
+/// Tr from --kitti-calib: a calib file, a folder with calib.txt, or a sequence number that
+/// selects a row of the shared per-sequence table.
+std::optional<Eigen::Isometry3d> calibration(const Options& options, const io::ScanSequence& seq) {
+  if (options.kitti_calib.empty()) return seq.velo_to_cam();
+  const std::string& arg = options.kitti_calib;
+  if (fs::exists(arg)) {
+    std::optional<int> number;
+    try {
+      number = io::kitti_sequence_number(options.input);
+    } catch (const std::invalid_argument&) {
+    }
+    return io::read_kitti_velo_to_cam(arg, number);
+  }
+  throw CLI::ValidationError("--kitti-calib", "no such file or folder: " + arg);
+}
+
+std::optional<tools::Accuracy> accuracy(const io::ScanSequence& seq,
+                                        const std::optional<Eigen::Isometry3d>& tr,
+                                        const std::vector<Eigen::Isometry3d>& poses_cam,
+                                        std::size_t first) {
+  if (!seq.ground_truth_cam() || !tr) return std::nullopt;
+  const auto& all = *seq.ground_truth_cam();
+  std::vector<Eigen::Isometry3d> gt(all.begin() + first, all.begin() + first + poses_cam.size());
+  const Eigen::Isometry3d origin = gt.front().inverse();
+  for (auto& pose : gt) pose = origin * pose;
+  const eval::KittiMetrics kitti = eval::compute_kitti_metrics(gt, poses_cam);
+  const eval::AteResult ate = eval::compute_ate(gt, poses_cam);
+  return tools::Accuracy{kitti.translation_percent, kitti.rotation_deg_per_100m, kitti.segments,
+                         ate.translation_rmse, ate.rotation_rmse_deg};
+}
+
+int run(const Options& options) {
+  TrackerConfig config =
+      options.config_file.empty() ? TrackerConfig{} : load_tracker_config(options.config_file);
+  if (options.mode == "icp") config.registration.mode = CostMode::Icp;
+  if (options.mode == "icp+cov") config.registration.mode = CostMode::IcpCov;
+  if (options.voxel_size > 0.0) config.voxelizer.voxel_size = options.voxel_size;
+  validate(config);
+
+  io::KittiBinOptions bin;
+  bin.vertical_angle_correction_deg = options.vertical_correction_deg;
+  const io::ScanSequence sequence(options.input, bin);
+  const auto [first, last] = parse_frames(options.frames, sequence.size());
+  const std::optional<Eigen::Isometry3d> tr = calibration(options, sequence);
+  fs::create_directories(options.output);
+
+  const int threads =
+      options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
+  tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, threads);
+  tbb::task_arena arena(threads);
+
+  Tracker tracker(config);
+  tools::RunStats stats;
+  std::vector<Eigen::Isometry3d> poses;
+  std::vector<io::TimedPose> timed;
+  tools::Progress progress("odometry", last - first);
+  const auto start = std::chrono::steady_clock::now();
+  for (std::size_t i = first; i < last; ++i) {
+    const PointCloud scan = sequence.load(i);
+    FrameResult frame;
+    arena.execute([&] { frame = tracker.process(scan); });
+    stats.add(frame);
+    poses.push_back(frame.pose);
+    timed.push_back({sequence.timestamp(i), frame.pose});
+    progress.update(i - first + 1,
+                    std::to_string(static_cast<int>(stats.frames_per_second())) + " frames/s");
+  }
+  progress.finish();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  io::write_kitti_poses((fs::path(options.output) / "poses_kitti.txt").string(), poses);
+  io::write_tum((fs::path(options.output) / "poses_tum.txt").string(), timed);
+  std::ofstream((fs::path(options.output) / "config.yaml").string())
+      << tracker_config_to_yaml(config);
+  std::optional<tools::Accuracy> acc;
+  if (tr) {
+    const auto poses_cam = io::velo_to_cam_trajectory(poses, *tr);
+    io::write_kitti_poses((fs::path(options.output) / "poses_kitti_cam.txt").string(), poses_cam);
+    acc = accuracy(sequence, tr, poses_cam, first);
+  }
+  const std::string mode = config.registration.mode == CostMode::Icp ? "icp" : "icp+cov";
+  std::ofstream((fs::path(options.output) / "stats.json").string())
+      << stats.to_json(mode, config.voxelizer.voxel_size, threads, wall, acc);
+
+  if (!options.quiet) {
+    std::printf(
+        "%zu frames, %s, %.1f m voxels, %d thread(s): %.0f frames/s (per frame p50 %.2f ms, "
+        "p99 %.2f ms), %zu keyframes, %zu registration failures\n",
+        stats.frames(), mode.c_str(), config.voxelizer.voxel_size, threads,
+        stats.frames_per_second(), stats.percentile_ms(50), stats.percentile_ms(99),
+        stats.keyframes(), stats.failures());
+    if (acc) {
+      if (acc->segments > 0) {
+        std::printf("KITTI metric: %.3f %% translation, %.4f deg/100 m rotation (%zu segments)\n",
+                    acc->translation_percent, acc->rotation_deg_per_100m, acc->segments);
+      } else {
+        std::printf("KITTI metric: undefined (trajectory shorter than 100 m)\n");
+      }
+      std::printf("ATE: %.3f m translation RMSE, %.3f deg rotation RMSE\n", acc->ate_translation_m,
+                  acc->ate_rotation_deg);
+    }
+    std::printf("wrote %s/{poses_kitti.txt,poses_tum.txt,config.yaml,stats.json%s}\n",
+                options.output.c_str(), tr ? ",poses_kitti_cam.txt" : "");
+  }
+  return stats.failures() > 0 ? 3 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "LiTAMIN2 LiDAR odometry over a recorded sequence.\n"
+      "INPUT is a KITTI odometry sequence folder (velodyne/*.bin, optional calib.txt, times.txt,\n"
+      "poses.txt) or a folder of .bin/.pcd scans taken in name order. Writes, into --output:\n"
+      "poses_kitti.txt (sensor poses in the frame of the first scan, 3x4 row-major), "
+      "poses_tum.txt,\n"
+      "config.yaml (the full config used), stats.json (speed, memory, accuracy if ground truth\n"
+      "is known) and, with KITTI calibration, poses_kitti_cam.txt (camera-0 convention).\n"
+      "Exit status: 0 ok, 1 bad input, 3 some frames could not be registered."};
+  Options options;
+  app.add_option("INPUT", options.input, "Sequence folder")->required();
+  app.add_option("-o,--output", options.output, "Output folder (created)")->required();
+  app.add_option("-c,--config", options.config_file,
+                 "Tracker config YAML (see config/tracker.yaml)");
+  app.add_option("--mode", options.mode, "Cost: icp or icp+cov (overrides the config)")
+      ->check(CLI::IsMember({"icp", "icp+cov"}));
+  app.add_option("--voxel-size", options.voxel_size, "Voxel edge in metres (overrides the config)")
+      ->check(CLI::Range(0.05, 50.0));
+  app.add_option("-j,--threads", options.threads, "Threads; 0 = all cores")
+      ->check(CLI::Range(0, 1024));
+  app.add_option("--kitti-calib", options.kitti_calib,
+                 "KITTI calib.txt, a sequence folder, or the per-sequence Tr table (the row is "
+                 "chosen by INPUT's sequence number)");
+  app.add_option(
+      "--vertical-correction", options.vertical_correction_deg,
+      "Rotate KITTI HDL-64 points up by this many degrees (KISS-ICP uses 0.205); off by default");
+  app.add_option("--frames", options.frames, "Range A:B of scans (B exclusive)");
+  app.add_flag("-q,--quiet", options.quiet, "Print nothing on success");
+  app.set_version_flag("--version", std::string(litamin2::version()));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    return run(options);
+  } catch (const CLI::Error& e) {
+    std::cerr << "litamin2-odometry: " << e.what() << "\n";
+    return 1;
+  } catch (const ConfigError& e) {
+    std::cerr << "litamin2-odometry: config: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "litamin2-odometry: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,47 @@
+#pragma once
+// Timing and memory statistics of an odometry run, written as stats.json.
+
+#include "litamin2/core/tracker.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace litamin2::tools {
+
+struct Accuracy {
+  double translation_percent = 0.0;
+  double rotation_deg_per_100m = 0.0;
+  std::size_t segments = 0;
+  double ate_translation_m = 0.0;
+  double ate_rotation_deg = 0.0;
+};
+
+class RunStats {
+ public:
+  void add(const FrameResult& frame);
+  std::size_t frames() const { return total_ms_.size(); }
+  /// Frames per second of processing time (scan loading excluded).
+  double frames_per_second() const;
+  double percentile_ms(double p) const;
+  double max_ms() const;
+  std::size_t keyframes() const { return keyframes_; }
+  std::size_t failures() const { return failures_; }
+
+  /// The stats.json document.
+  std::string to_json(const std::string& mode, double voxel_size, int threads, double wall_seconds,
+                      const std::optional<Accuracy>& accuracy) const;
+
+ private:
+  std::vector<double> total_ms_;
+  StageTimes sum_;
+  std::size_t keyframes_ = 0;
+  std::size_t failures_ = 0;
+  std::size_t distributions_ = 0;
+  std::size_t iterations_ = 0;
+};
+
+/// Peak resident memory of this process, MiB.
+double peak_memory_mib();
+
+}  // namespace litamin2::tools
