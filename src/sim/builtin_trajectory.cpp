@@ -1,5 +1,6 @@
 #include "litamin2/sim/builtin_trajectory.hpp"
 
+#include <Eigen/SVD>
 #include <cmath>
 #include <functional>
 #include <stdexcept>
@@ -93,7 +94,21 @@ Eigen::Isometry3d kitti_default_velo_to_cam() {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = m.leftCols<3>();
   T.translation() = m.col(3);
-  return T;
+  return orthonormalized(T);
+}
+
+Eigen::Isometry3d orthonormalized(const Eigen::Isometry3d& T) {
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(T.linear(), Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d R = svd.matrixU() * svd.matrixV().transpose();
+  if (R.determinant() < 0) {
+    Eigen::Matrix3d U = svd.matrixU();
+    U.col(2) *= -1.0;
+    R = U * svd.matrixV().transpose();
+  }
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  out.linear() = R;
+  out.translation() = T.translation();
+  return out;
 }
 
 }  // namespace litamin2::sim

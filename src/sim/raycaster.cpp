@@ -264,6 +264,24 @@ PointCloud Raycaster::scan(const Eigen::Isometry3d& sensor_pose, const LidarMode
   std::vector<Eigen::Vector4f> slots(static_cast<std::size_t>(beams) * steps);
   const double ref2 = model.reference_range * model.reference_range;
   const Impl& impl = *impl_;
+  // Rays blocked by the ego vehicle (slab test in the sensor frame; the origin is outside).
+  const Eigen::Vector3f ego_lo = model.ego_box_min.cast<float>(),
+                        ego_hi = model.ego_box_max.cast<float>();
+  const bool has_ego = (ego_lo.array() < ego_hi.array()).all();
+  auto hits_ego = [&](const Eigen::Vector3f& d) {
+    float t0 = 0.0f, t1 = std::numeric_limits<float>::infinity();
+    for (int i = 0; i < 3; ++i) {
+      if (std::abs(d[i]) < 1e-9f) {
+        if (0.0f < ego_lo[i] || 0.0f > ego_hi[i]) return false;
+        continue;
+      }
+      float ta = ego_lo[i] / d[i], tb = ego_hi[i] / d[i];
+      if (ta > tb) std::swap(ta, tb);
+      t0 = std::max(t0, ta);
+      t1 = std::min(t1, tb);
+    }
+    return t0 <= t1;
+  };
   const float max_range = static_cast<float>(model.max_range);
   // Turns one hit into a point (or no return) in slot k.
   auto shade = [&](std::size_t k, const Eigen::Vector3f& ds, const Eigen::Vector3f& dw, float t,
@@ -299,9 +317,9 @@ PointCloud Raycaster::scan(const Eigen::Isometry3d& sensor_pose, const LidarMode
         const int na = std::min(8, r.end() - a0);
         Eigen::Vector3f ds[8], dw[8];
         for (int i = 0; i < 8; ++i) {
-          valid[i] = i < na ? -1 : 0;
           const int a = a0 + (i < na ? i : 0);
           ds[i] = Eigen::Vector3f(cos_el[b] * cos_az[a], cos_el[b] * sin_az[a], sin_el[b]);
+          valid[i] = i < na && !(has_ego && hits_ego(ds[i])) ? -1 : 0;
           dw[i] = R * ds[i];
           rh.ray.org_x[i] = origin.x();
           rh.ray.org_y[i] = origin.y();
@@ -322,7 +340,7 @@ PointCloud Raycaster::scan(const Eigen::Isometry3d& sensor_pose, const LidarMode
         for (int i = 0; i < na; ++i) {
           const std::size_t k = static_cast<std::size_t>(b) * steps + a0 + i;
           slots[k].x() = std::numeric_limits<float>::quiet_NaN();
-          if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+          if (!valid[i] || rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
           const unsigned id = impl.opt.instancing ? rh.hit.instID[0][i] : rh.hit.geomID[i];
           shade(k, ds[i], dw[i], rh.ray.tfar[i],
                 Eigen::Vector3f(rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]), id,

@@ -106,28 +106,39 @@ struct World::Impl {
     return {best_i >= 0 ? std::sqrt(best) : max_d, best_i};
   }
 
-  /// Road height (sensor height below the trajectories), Gaussian-weighted over nearby samples.
+  /// Road height (sensor height below the trajectories): a Gaussian-weighted local plane fit
+  /// over nearby samples (ridge-regularised slopes, so it is exact on a path's own slope and
+  /// flat across a straight road, also at the ends of a trajectory).
   double road_height_raw(double x, double y) const {
     constexpr double kSigma = 10.0, kRadius = 30.0;
     const int cx0 = static_cast<int>(std::floor((x - kRadius) / kCell));
     const int cx1 = static_cast<int>(std::floor((x + kRadius) / kCell));
     const int cy0 = static_cast<int>(std::floor((y - kRadius) / kCell));
     const int cy1 = static_cast<int>(std::floor((y + kRadius) / kCell));
-    double wsum = 0.0, zsum = 0.0;
+    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+    double wsum = 0.0;
     for (int cx = cx0; cx <= cx1; ++cx) {
       for (int cy = cy0; cy <= cy1; ++cy) {
         const auto it = grid.find(pack(cx, cy));
         if (it == grid.end()) continue;
         for (int i : it->second) {
-          const double d2 = (samples[i].p.head<2>() - Eigen::Vector2d(x, y)).squaredNorm();
+          const Eigen::Vector2d dxy = samples[i].p.head<2>() - Eigen::Vector2d(x, y);
+          const double d2 = dxy.squaredNorm();
           if (d2 > kRadius * kRadius) continue;
           const double w = std::exp(-0.5 * d2 / (kSigma * kSigma));
+          const Eigen::Vector3d u(1.0, dxy.x(), dxy.y());
+          A += w * u * u.transpose();
+          rhs += w * samples[i].p.z() * u;
           wsum += w;
-          zsum += w * samples[i].p.z();
         }
       }
     }
-    if (wsum > 1e-9) return zsum / wsum - opt.sensor_height;
+    if (wsum > 1e-9) {
+      A(1, 1) += 4.0 * wsum;
+      A(2, 2) += 4.0 * wsum;
+      return A.ldlt().solve(rhs)(0) - opt.sensor_height;
+    }
     // Far from every path: the nearest sample's height.
     const auto [d, i] = nearest(x, y, opt.corridor_radius + 4.0 * opt.tile_size);
     (void)d;
@@ -246,8 +257,11 @@ struct World::Impl {
         PathSample& s = samples[i];
         if (s.arc >= block_end) {
           block_end = s.arc + rng.uniform(60.0, 180.0);
-          const double r = rng.uniform();
-          current = r < 0.45 ? District::kUrban : r < 0.8 ? District::kSuburban : District::kGreen;
+          const auto& w = opt.district_weights;
+          const double r = rng.uniform() * std::max(1e-12, w[0] + w[1] + w[2]);
+          current = r < w[0]          ? District::kUrban
+                    : r < w[0] + w[1] ? District::kSuburban
+                                      : District::kGreen;
         }
         s.district = s.speed > opt.open_speed ? District::kOpen : current;
       }
@@ -402,7 +416,7 @@ struct World::Impl {
       switch (d) {
         case District::kUrban: {
           const double w = rng.uniform(10.0, 28.0), depth = rng.uniform(10.0, 18.0);
-          const double h = rng.uniform(8.0, 22.0), setback = rng.uniform(hw + 2.5, hw + 8.0);
+          const double h = rng.uniform(8.0, 22.0), setback = rng.uniform(hw + 2.0, hw + 6.0);
           bool ok = opt.buildings && rng.chance(density_chance(0.9)) &&
                     place(p, side, a + 0.5 * w, setback + 0.5 * depth, ObjectKind::kBuilding,
                           {w, depth, h}, 0.5 * w, 0.5 * depth, hw + 1.5, rng);

@@ -146,7 +146,7 @@ int main(int argc, char** argv) {
     if (!sequence_name.empty()) seq = io::kitti_sequence_number(sequence_name);
     if (!seq && !trajectory_path.empty()) seq = sequence_from_filename(trajectory_path);
     if (!calib_path.empty()) {
-      tr = io::read_kitti_velo_to_cam(calib_path, seq);
+      tr = sim::orthonormalized(io::read_kitti_velo_to_cam(calib_path, seq));
       spdlog::info("calibration from {}", calib_path);
     } else {
       spdlog::info("no --calib: using Tr of KITTI sequences 00-02");

@@ -19,7 +19,13 @@ std::vector<Eigen::Isometry3d> builtin_trajectory(const std::string& name);
 /// Names accepted by builtin_trajectory.
 std::vector<std::string> builtin_trajectory_names();
 
-/// Tr (velodyne -> camera 0) of KITTI odometry sequences 00-02, the default calibration.
+/// Tr (velodyne -> camera 0) of KITTI odometry sequences 00-02, the default calibration
+/// (rotation re-orthonormalised, see orthonormalized).
 Eigen::Isometry3d kitti_default_velo_to_cam();
+
+/// The transform with its rotation replaced by the nearest rotation matrix. KITTI's Tr is
+/// orthonormal only to ~1e-7, so Tr * Tr.inverse() (transpose-based) is not exactly the identity;
+/// the simulator uses orthonormalised calibrations so poses round-trip exactly.
+Eigen::Isometry3d orthonormalized(const Eigen::Isometry3d& T);
 
 }  // namespace litamin2::sim

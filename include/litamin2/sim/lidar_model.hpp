@@ -3,6 +3,7 @@
 /// limits, noise) with presets for the Velodyne HDL-64E (KITTI), Velodyne VLP-16 and a
 /// 128-beam Ouster-like sensor.
 
+#include <Eigen/Core>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,6 +32,11 @@ struct LidarModel {
   double reference_range = 320.0;
   /// Height of the sensor's origin above the road, metres (KITTI: 1.73).
   double mount_height = 1.73;
+  /// Ego vehicle as an axis-aligned box in the sensor frame (min, max corners): rays that hit it
+  /// give no return (KITTI's car body hides part of the lowest beams). Empty if min > max.
+  Eigen::Vector3d ego_box_min = Eigen::Vector3d(-1.8, -0.8, -1.73);
+  /// Upper corner of the ego-vehicle box.
+  Eigen::Vector3d ego_box_max = Eigen::Vector3d(1.2, 0.8, -0.5);
 
   /// Number of beams (rings).
   std::size_t beams() const { return elevations_deg.size(); }

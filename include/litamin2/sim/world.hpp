@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -36,6 +37,8 @@ struct WorldOptions {
   double kerb_height = 0.12;
   /// Stretches driven faster than this (m/s) become open highway with little structure.
   double open_speed = 16.0;
+  /// Relative shares of urban, suburban and green stretches (open stretches come from speed).
+  std::array<double, 3> district_weights = {0.55, 0.3, 0.15};
   /// Multiplies the probability of every object (0 = ground only).
   double density = 1.0;
   /// Enables building facades.
