@@ -1,6 +1,7 @@
 #include "litamin2/core/voxel_map.hpp"
 
 #include "litamin2/core/voxel_moments.hpp"
+#include "litamin2/core/voxel_voting.hpp"
 
 #include <tsl/robin_map.h>
 
@@ -29,28 +30,20 @@ VoxelMap::VoxelMap(VoxelMap&&) noexcept = default;
 VoxelMap& VoxelMap::operator=(VoxelMap&&) noexcept = default;
 
 void VoxelMap::insert(const PointCloud& scan, const Eigen::Isometry3d& pose) {
-  const double size = voxels_.voxel_size;
-  const double inv_size = 1.0 / size;
-  const double min_range_sq = voxels_.min_range * voxels_.min_range;
-  const double max_range_sq = voxels_.max_range * voxels_.max_range;
   Cells& c = *cells_;
-  for (const Eigen::Vector3f& pf : scan.points) {
-    const Eigen::Vector3d p = pf.cast<double>();
-    const double range_sq = p.squaredNorm();
-    if (!(range_sq >= min_range_sq && range_sq <= max_range_sq)) continue;
-    const Eigen::Vector3d world = pose * p;
-    const VoxelIndex index = voxel_index(world, inv_size);
+  vote_points(scan, pose, voxels_, [&](const VoxelIndex& index) -> VoxelMoments& {
     const std::uint64_t key = pack_voxel(index);
     const auto [it, inserted] = c.cell_of_key.try_emplace(key, static_cast<int>(c.cells.size()));
     if (inserted) {
       Cells::Cell& cell = c.cells.emplace_back();
       cell.key = key;
-      cell.moments.origin = (index.cast<double>() + Eigen::Vector3d::Constant(0.5)) * size;
+      cell.moments.origin =
+          (index.cast<double>() + Eigen::Vector3d::Constant(0.5)) * voxels_.voxel_size;
     }
     Cells::Cell& cell = c.cells[it->second];
-    cell.moments.add(world);
     cell.dirty = true;
-  }
+    return cell.moments;
+  });
   rebuild_distributions();
 }
 

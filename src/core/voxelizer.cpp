@@ -2,6 +2,7 @@
 
 #include "litamin2/core/voxel_key.hpp"
 #include "litamin2/core/voxel_moments.hpp"
+#include "litamin2/core/voxel_voting.hpp"
 
 #include <tsl/robin_map.h>
 
@@ -20,28 +21,18 @@ Voxelizer& Voxelizer::operator=(Voxelizer&&) noexcept = default;
 
 std::vector<Distribution> Voxelizer::voxelize(const PointCloud& scan,
                                               const Eigen::Isometry3d& grid_pose) {
-  const double size = config_.voxel_size;
-  const double inv_size = 1.0 / size;
-  const double min_range_sq = config_.min_range * config_.min_range;
-  const double max_range_sq = config_.max_range * config_.max_range;
   Table& table = *table_;
   table.slot_of_key.clear();
   table.moments.clear();
-
-  for (const Eigen::Vector3f& pf : scan.points) {
-    const Eigen::Vector3d p = pf.cast<double>();
-    const double range_sq = p.squaredNorm();
-    if (!(range_sq >= min_range_sq && range_sq <= max_range_sq)) continue;  // also drops NaN
-    const Eigen::Vector3d g = grid_pose * p;
-    const VoxelIndex index = voxel_index(g, inv_size);
+  vote_points(scan, grid_pose, config_, [&](const VoxelIndex& index) -> VoxelMoments& {
     const auto [it, inserted] =
         table.slot_of_key.try_emplace(pack_voxel(index), static_cast<int>(table.moments.size()));
     if (inserted) {
       VoxelMoments& fresh = table.moments.emplace_back();
-      fresh.origin = (index.cast<double>() + Eigen::Vector3d::Constant(0.5)) * size;
+      fresh.origin = (index.cast<double>() + Eigen::Vector3d::Constant(0.5)) * config_.voxel_size;
     }
-    table.moments[it->second].add(g);
-  }
+    return table.moments[it->second];
+  });
 
   // Back to the sensor frame: p = G^-1 g, so mean' = G^-1 mean and C' = R^T C R.
   const Eigen::Isometry3d to_sensor = grid_pose.inverse();

@@ -40,7 +40,7 @@ struct RegistrationConfig {
   /// Treatment of the Cov term's Hessian.
   CovHessian cov_hessian = CovHessian::Full;
   /// How the nearest map distribution is found.
-  CorrespondenceMethod correspondence = CorrespondenceMethod::Voxel27;
+  CorrespondenceMethod correspondence = CorrespondenceMethod::KdTree;
   /// Correspondences farther than this are ignored, metres; 0 means one voxel edge.
   double max_correspondence_distance = 0.0;
   /// Newton iteration limit.

@@ -1,0 +1,51 @@
+#pragma once
+/// Votes the points of a scan into voxel moments: the inner loop shared by the scan voxeliser
+/// and the map. Points arrive in ring order, so consecutive points mostly fall into the same
+/// voxel: a run of them is summed in a local accumulator and merged into the voxel once, which
+/// saves the hash lookup and the memory round trip per point.
+
+#include "litamin2/core/point_cloud.hpp"
+#include "litamin2/core/voxel_key.hpp"
+#include "litamin2/core/voxel_moments.hpp"
+#include "litamin2/core/voxelizer.hpp"
+
+#include <Eigen/Geometry>
+
+namespace litamin2 {
+
+/// Adds each point of `scan` whose range is within the config's limits, moved by `pose`, to
+/// the moments of its voxel. `moments_of(index)` returns the VoxelMoments of a voxel (creating
+/// it with its centre as origin); the reference is used before the next call only.
+template <class MomentsOf>
+void vote_points(const PointCloud& scan, const Eigen::Isometry3d& pose,
+                 const VoxelizerConfig& config, MomentsOf&& moments_of) {
+  const double size = config.voxel_size;
+  const double inv_size = 1.0 / size;
+  const double min_range_sq = config.min_range * config.min_range;
+  const double max_range_sq = config.max_range * config.max_range;
+  const Eigen::Matrix3d rotation = pose.linear();
+  const Eigen::Vector3d translation = pose.translation();
+
+  VoxelMoments run;
+  VoxelIndex run_index(0, 0, 0);
+  auto flush = [&] {
+    if (run.count > 0) moments_of(run_index).merge(run);
+  };
+  for (const Eigen::Vector3f& pf : scan.points) {
+    const Eigen::Vector3d p = pf.cast<double>();
+    const double range_sq = p.squaredNorm();
+    if (!(range_sq >= min_range_sq && range_sq <= max_range_sq)) continue;  // also drops NaN
+    const Eigen::Vector3d world = rotation * p + translation;
+    const VoxelIndex index = voxel_index(world, inv_size);
+    if (run.count == 0 || index != run_index) {
+      flush();
+      run = VoxelMoments();
+      run.origin = (index.cast<double>() + Eigen::Vector3d::Constant(0.5)) * size;
+      run_index = index;
+    }
+    run.add(world);
+  }
+  flush();
+}
+
+}  // namespace litamin2

@@ -1,0 +1,138 @@
+// litamin2-bench: time of each LiTAMIN2 stage and of whole frames on KITTI-size scans.
+//
+// Scans: the two real KITTI scans of ../shared/data (124k points each) for the stages, and a
+// sequence folder given with LITAMIN2_BENCH_SEQUENCE (e.g. a simulated one) for whole frames.
+// Usage: litamin2-bench [--benchmark_filter=REGEX] ; results and commands in docs/benchmarks.md.
+
+#include "litamin2/core/correspondence_search.hpp"
+#include "litamin2/core/scan_registration.hpp"
+#include "litamin2/core/tracker.hpp"
+#include "litamin2/io/kitti_bin.hpp"
+#include "litamin2/io/kitti_sequence.hpp"
+
+#include <benchmark/benchmark.h>
+#include <tbb/task_arena.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+
+namespace {
+
+using namespace litamin2;
+
+struct Pair {
+  PointCloud target, source;
+};
+
+const Pair& real_pair() {
+  static const Pair pair = [] {
+    const std::string dir = LITAMIN2_SHARED_DATA_DIR "/kitti/seq00_frames_xyz/";
+    if (!std::filesystem::exists(dir + "000000.bin")) {
+      std::cerr << "litamin2-bench: shared KITTI scans not found in " << dir << "\n";
+      std::exit(2);
+    }
+    return Pair{io::read_kitti_bin(dir + "000000.bin"), io::read_kitti_bin(dir + "000001.bin")};
+  }();
+  return pair;
+}
+
+/// Runs `body` in an arena of state.range(0) threads.
+template <class Body>
+void in_arena(benchmark::State& state, Body&& body) {
+  tbb::task_arena arena(static_cast<int>(state.range(0)));
+  arena.execute([&] { body(); });
+}
+
+void BM_Voxelize(benchmark::State& state) {
+  Voxelizer voxelizer(VoxelizerConfig{});
+  for (auto _ : state) benchmark::DoNotOptimize(voxelizer.voxelize(real_pair().source));
+  state.SetItemsProcessed(state.iterations() * real_pair().source.size());
+}
+BENCHMARK(BM_Voxelize)->Unit(benchmark::kMillisecond);
+
+void BM_MapInsert(benchmark::State& state) {
+  for (auto _ : state) {
+    VoxelMap map(VoxelizerConfig{}, VoxelMapConfig{});
+    map.insert(real_pair().target, Eigen::Isometry3d::Identity());
+    benchmark::DoNotOptimize(map.distributions().data());
+  }
+}
+BENCHMARK(BM_MapInsert)->Unit(benchmark::kMillisecond);
+
+void BM_Correspondences(benchmark::State& state) {
+  VoxelMap map(VoxelizerConfig{}, VoxelMapConfig{});
+  map.insert(real_pair().target, Eigen::Isometry3d::Identity());
+  const auto source = Voxelizer(VoxelizerConfig{}).voxelize(real_pair().source);
+  const auto search =
+      make_correspondence_search(static_cast<CorrespondenceMethod>(state.range(0)), map);
+  const double max_sq = 9.0;
+  for (auto _ : state) {
+    int found = 0;
+    for (const Distribution& d : source) found += search->nearest(d.mean, max_sq) >= 0;
+    benchmark::DoNotOptimize(found);
+  }
+  state.SetLabel(state.range(0) == 0 ? "voxel27" : "kdtree");
+  state.SetItemsProcessed(state.iterations() * source.size());
+}
+BENCHMARK(BM_Correspondences)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+/// One cost evaluation (correspondences + terms + reduction): args mode, threads.
+void BM_CostEvaluation(benchmark::State& state) {
+  VoxelMap map(VoxelizerConfig{}, VoxelMapConfig{});
+  map.insert(real_pair().target, Eigen::Isometry3d::Identity());
+  const auto source = Voxelizer(VoxelizerConfig{}).voxelize(real_pair().source);
+  const auto search = make_correspondence_search(CorrespondenceMethod::Voxel27, map);
+  RegistrationConfig config;
+  config.mode = state.range(1) ? CostMode::IcpCov : CostMode::Icp;
+  in_arena(state, [&] {
+    for (auto _ : state) {
+      benchmark::DoNotOptimize(
+          evaluate_cost(source, map, *search, Eigen::Isometry3d::Identity(), config));
+    }
+  });
+  state.SetLabel(state.range(1) ? "icp+cov" : "icp");
+}
+BENCHMARK(BM_CostEvaluation)
+    ->Args({1, 0})
+    ->Args({1, 1})
+    ->Args({2, 0})
+    ->Args({2, 1})
+    ->Unit(benchmark::kMicrosecond);
+
+/// Whole frames of a sequence (LITAMIN2_BENCH_SEQUENCE), preloaded: args threads, mode.
+void BM_TrackerFrames(benchmark::State& state) {
+  const char* folder = std::getenv("LITAMIN2_BENCH_SEQUENCE");
+  if (!folder) {
+    state.SkipWithError("set LITAMIN2_BENCH_SEQUENCE to a sequence folder (e.g. simulated)");
+    return;
+  }
+  static std::vector<PointCloud> scans;
+  if (scans.empty()) {
+    const io::ScanSequence sequence(folder);
+    const std::size_t n = std::min<std::size_t>(sequence.size(), 100);
+    for (std::size_t i = 0; i < n; ++i) scans.push_back(sequence.load(i));
+  }
+  TrackerConfig config;
+  config.registration.mode = state.range(1) ? CostMode::IcpCov : CostMode::Icp;
+  in_arena(state, [&] {
+    for (auto _ : state) {
+      Tracker tracker(config);
+      for (const PointCloud& scan : scans) benchmark::DoNotOptimize(tracker.process(scan));
+    }
+  });
+  state.SetItemsProcessed(state.iterations() * scans.size());
+  state.SetLabel(state.range(1) ? "icp+cov, frames/s = items_per_second"
+                                : "icp, frames/s = items_per_second");
+}
+BENCHMARK(BM_TrackerFrames)
+    ->Args({1, 0})
+    ->Args({1, 1})
+    ->Args({2, 0})
+    ->Args({2, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
+
+}  // namespace
+
+BENCHMARK_MAIN();
