@@ -538,14 +538,14 @@ struct World::Impl {
                                                        : 0.08;
       if (opt.vegetation && rng.chance(density_chance(bush_p))) {
         const double s = rng.uniform(0.6, 2.5);
-        place(p, side, a + rng.uniform(0, 5), hw + rng.uniform(2.0, 35.0), ObjectKind::kBush,
+        place(p, side, a + rng.uniform(0, 5), hw + rng.uniform(2.0, 25.0), ObjectKind::kBush,
               {s * rng.uniform(0.8, 1.6), s, s * rng.uniform(0.5, 1.0)}, 0.4 * s, 0.4 * s, hw + 0.8,
               rng);
       }
       if (opt.vegetation && rng.chance(density_chance(tree_p))) {
         const double r = rng.uniform(1.5, 4.0), h = rng.uniform(2.2 * r, 4.0 * r);
         place(p, side, a + rng.uniform(0, 5),
-              hw + rng.uniform(d == District::kOpen ? 12.0 : 4.0, 45.0), ObjectKind::kTree,
+              hw + rng.uniform(d == District::kOpen ? 12.0 : 4.0, 30.0), ObjectKind::kTree,
               {2 * r, 2 * r, h}, 0.8, 0.8, hw + 1.0, rng);
       }
     }

@@ -198,6 +198,27 @@ int main(int argc, char** argv) {
                  world.tile_count(),
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t_world).count());
 
+    if (fleet > 0) {
+      // Where each vehicle starts in the shared world frame (velodyne convention, KITTI 3x4 row
+      // layout), so map-merging tests know the true relative placement of the vehicles.
+      std::filesystem::create_directories(output);
+      const std::string fleet_path = (std::filesystem::path(output) / "fleet.txt").string();
+      FILE* f = std::fopen(fleet_path.c_str(), "w");
+      if (!f) throw io::IoError(fleet_path, "cannot open for writing");
+      std::fprintf(
+          f,
+          "# vehicle  start pose of velodyne in the shared world frame (3x4 row-major)  # plan\n");
+      for (std::size_t k = 0; k < vehicles.size(); ++k) {
+        const Eigen::Matrix<double, 3, 4> m =
+            vehicles[k].sensor_poses.front().matrix().topRows<3>();
+        std::fprintf(f, "vehicle_%02zu", k);
+        for (int r = 0; r < 3; ++r) {
+          for (int c = 0; c < 4; ++c) std::fprintf(f, " %.9e", m(r, c));
+        }
+        std::fprintf(f, "  # %s\n", vehicles[k].description.c_str());
+      }
+      std::fclose(f);
+    }
     StatsAccumulator acc;
     double raycast_s = 0;
     std::size_t frames_total = 0, points_total = 0;

@@ -29,7 +29,7 @@ struct LidarModel {
   double dropout = 0.01;
   /// Range at which a reflectivity-1 target hit head-on gives the detection-threshold power;
   /// weaker echoes (dark, grazing or far surfaces) are lost with rising probability.
-  double reference_range = 320.0;
+  double reference_range = 220.0;
   /// Height of the sensor's origin above the road, metres (KITTI: 1.73).
   double mount_height = 1.73;
   /// Ego vehicle as an axis-aligned box in the sensor frame (min, max corners): rays that hit it
