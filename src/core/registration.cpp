@@ -33,9 +33,10 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
   if (config.mode != CostMode::IcpCov) return;
 
   // Cov term, Eq. 4: E_cov = f^2 (or f, Table 1), rotation only.
-  const Eigen::Matrix3d rotated_cov_inv = rotation * source.cov_inv * rotation.transpose();
+  const Eigen::Matrix3d rotated_shape = rotation * source.shape_cov * rotation.transpose();
+  const Eigen::Matrix3d rotated_shape_inv = rotation * source.shape_cov_inv * rotation.transpose();
   const CovShape shape =
-      evaluate_cov_shape(rotated_cov_inv, rotated_cov, target.cov, target.cov_inv);
+      evaluate_cov_shape(rotated_shape_inv, rotated_shape, target.shape_cov, target.shape_cov_inv);
   const bool squared = config.cov_energy == CovEnergy::Squared;
   const double energy = squared ? shape.f * shape.f : shape.f;
   const double w_cov = robust_weight(energy, config.sigma_cov);

@@ -124,6 +124,7 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node) {
   Section regularizer(voxelizer.child("regularization"), "voxelizer.regularization");
   regularizer.read_enum("method", v.regularizer.method, kRegularizations);
   regularizer.read("min_eigen_ratio", v.regularizer.min_eigen_ratio);
+  regularizer.read("shape_min_eigen_ratio", v.regularizer.shape_min_eigen_ratio);
   regularizer.read("plane_epsilon", v.regularizer.plane_epsilon);
   regularizer.read("min_eigenvalue", v.regularizer.min_eigenvalue);
   regularizer.reject_unknown();
@@ -189,6 +190,9 @@ void validate(const TrackerConfig& c) {
   require(v.max_range > v.min_range, "voxelizer.max_range", v.max_range, "above min_range");
   require(v.regularizer.min_eigen_ratio > 0.0 && v.regularizer.min_eigen_ratio <= 1.0,
           "voxelizer.regularization.min_eigen_ratio", v.regularizer.min_eigen_ratio, "in (0, 1]");
+  require(v.regularizer.shape_min_eigen_ratio > 0.0 && v.regularizer.shape_min_eigen_ratio <= 1.0,
+          "voxelizer.regularization.shape_min_eigen_ratio", v.regularizer.shape_min_eigen_ratio,
+          "in (0, 1]");
   require(v.regularizer.plane_epsilon > 0.0 && v.regularizer.plane_epsilon <= 1.0,
           "voxelizer.regularization.plane_epsilon", v.regularizer.plane_epsilon, "in (0, 1]");
   require(v.regularizer.min_eigenvalue > 0.0, "voxelizer.regularization.min_eigenvalue",
@@ -235,6 +239,8 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "method" << YAML::Value
       << enum_name(c.voxelizer.regularizer.method, kRegularizations);
   out << YAML::Key << "min_eigen_ratio" << YAML::Value << c.voxelizer.regularizer.min_eigen_ratio;
+  out << YAML::Key << "shape_min_eigen_ratio" << YAML::Value
+      << c.voxelizer.regularizer.shape_min_eigen_ratio;
   out << YAML::Key << "plane_epsilon" << YAML::Value << c.voxelizer.regularizer.plane_epsilon;
   out << YAML::Key << "min_eigenvalue" << YAML::Value << c.voxelizer.regularizer.min_eigenvalue;
   out << YAML::EndMap << YAML::EndMap;

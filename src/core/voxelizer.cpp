@@ -44,7 +44,8 @@ std::vector<Distribution> Voxelizer::voxelize(const PointCloud& scan,
     Distribution d = voxel.to_distribution(config_.regularizer);
     d.mean = to_sensor * d.mean;
     d.cov = r * d.cov * r.transpose();
-    d.cov_inv = r * d.cov_inv * r.transpose();
+    d.shape_cov = r * d.shape_cov * r.transpose();
+    d.shape_cov_inv = r * d.shape_cov_inv * r.transpose();
     distributions.push_back(d);
   }
   return distributions;

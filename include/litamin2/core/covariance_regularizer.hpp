@@ -18,16 +18,25 @@ enum class RegularizationMethod { EigenClamp, Plane };
 struct RegularizerConfig {
   /// Which remedy to apply.
   RegularizationMethod method = RegularizationMethod::EigenClamp;
-  /// EigenClamp: floor of each eigenvalue relative to the largest.
+  /// EigenClamp: floor of each eigenvalue relative to the largest, for the ICP term.
   double min_eigen_ratio = 1e-4;
+  /// EigenClamp: the same floor for the Cov term's shapes.
+  double shape_min_eigen_ratio = 0.3;
   /// Plane: the small eigenvalue relative to the others (GICP uses 1e-3).
   double plane_epsilon = 1e-3;
   /// Absolute eigenvalue floor in m^2 for both methods (guards all-zero covariances).
   double min_eigenvalue = 1e-6;
 };
 
-/// Regularises `cov` in place and writes its inverse.
+/// Regularises `cov` in place (with min_eigen_ratio) and writes its inverse.
 void regularize_covariance(const RegularizerConfig& config, Eigen::Matrix3d& cov,
                            Eigen::Matrix3d& cov_inv);
+
+/// From a raw covariance, with one eigen-decomposition: the ICP term's covariance (clamped with
+/// min_eigen_ratio) and the Cov term's shape and its inverse (clamped with
+/// shape_min_eigen_ratio). With the Plane method both use plane_epsilon.
+void regularize_for_terms(const RegularizerConfig& config, const Eigen::Matrix3d& raw,
+                          Eigen::Matrix3d& cov, Eigen::Matrix3d& shape_cov,
+                          Eigen::Matrix3d& shape_cov_inv);
 
 }  // namespace litamin2

@@ -50,9 +50,9 @@ struct VoxelMoments {
     Eigen::Matrix3d second;
     second << sum_sq(0), sum_sq(1), sum_sq(2), sum_sq(1), sum_sq(3), sum_sq(4), sum_sq(2),
         sum_sq(4), sum_sq(5);
-    dist.cov = second / n - local_mean * local_mean.transpose();
+    const Eigen::Matrix3d raw = second / n - local_mean * local_mean.transpose();
     dist.count = count;
-    regularize_covariance(regularizer, dist.cov, dist.cov_inv);
+    regularize_for_terms(regularizer, raw, dist.cov, dist.shape_cov, dist.shape_cov_inv);
     return dist;
   }
 };
