@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages the build and the tests need, only when some are missing.
 set -euo pipefail
-pkgs=(build-essential cmake pkg-config libfastrtps-dev fastddsgen fastdds-tools cyclonedds-dev libsystemd-dev systemd iproute2 util-linux libeigen3-dev libtbb-dev libyaml-cpp-dev libspdlog-dev
+pkgs=(build-essential cmake pkg-config libfastrtps-dev fastddsgen fastdds-tools cyclonedds-dev cyclonedds-tools libsystemd-dev systemd iproute2 util-linux libeigen3-dev libtbb-dev libyaml-cpp-dev libspdlog-dev
       libcli11-dev libnanoflann-dev robin-map-dev libembree-dev libgtest-dev libgmock-dev
       libbenchmark-dev libpng-dev)
 missing=()
