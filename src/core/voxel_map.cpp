@@ -47,6 +47,30 @@ void VoxelMap::insert(const PointCloud& scan, const Eigen::Isometry3d& pose) {
   rebuild_distributions();
 }
 
+void VoxelMap::insert(const GridVoxels& voxels, const Eigen::Isometry3d& pose) {
+  const Eigen::Isometry3d correction = pose * voxels.grid_pose.inverse();
+  const Eigen::Matrix3d r = correction.linear();
+  const Eigen::Vector3d t = correction.translation();
+  const double size = voxels_.voxel_size;
+  const double inv_size = 1.0 / size;
+  Cells& c = *cells_;
+  for (const VoxelMoments& moments : voxels.moments) {
+    const Eigen::Vector3d mean = moments.origin + moments.sum / moments.count;
+    const VoxelIndex index = voxel_index(r * mean + t, inv_size);
+    const std::uint64_t key = pack_voxel(index);
+    const auto [it, inserted] = c.cell_of_key.try_emplace(key, static_cast<int>(c.cells.size()));
+    if (inserted) {
+      Cells::Cell& cell = c.cells.emplace_back();
+      cell.key = key;
+      cell.moments.origin = (index.cast<double>() + Eigen::Vector3d::Constant(0.5)) * size;
+    }
+    Cells::Cell& cell = c.cells[it->second];
+    cell.moments.merge(moments.transformed(r, t, cell.moments.origin));
+    cell.dirty = true;
+  }
+  rebuild_distributions();
+}
+
 void VoxelMap::remove_far(const Eigen::Vector3d& position) {
   Cells& c = *cells_;
   const double radius_sq = config_.radius * config_.radius;

@@ -10,7 +10,6 @@ namespace litamin2 {
 
 struct Voxelizer::Table {
   tsl::robin_map<std::uint64_t, int, VoxelKeyHash> slot_of_key;
-  std::vector<VoxelMoments> moments;
 };
 
 Voxelizer::Voxelizer(const VoxelizerConfig& config)
@@ -23,23 +22,26 @@ std::vector<Distribution> Voxelizer::voxelize(const PointCloud& scan,
                                               const Eigen::Isometry3d& grid_pose) {
   Table& table = *table_;
   table.slot_of_key.clear();
-  table.moments.clear();
+  last_.grid_pose = grid_pose;
+  last_.indices.clear();
+  last_.moments.clear();
   vote_points(scan, grid_pose, config_, [&](const VoxelIndex& index) -> VoxelMoments& {
     const auto [it, inserted] =
-        table.slot_of_key.try_emplace(pack_voxel(index), static_cast<int>(table.moments.size()));
+        table.slot_of_key.try_emplace(pack_voxel(index), static_cast<int>(last_.moments.size()));
     if (inserted) {
-      VoxelMoments& fresh = table.moments.emplace_back();
+      VoxelMoments& fresh = last_.moments.emplace_back();
       fresh.origin = (index.cast<double>() + Eigen::Vector3d::Constant(0.5)) * config_.voxel_size;
+      last_.indices.push_back(index);
     }
-    return table.moments[it->second];
+    return last_.moments[it->second];
   });
 
   // Back to the sensor frame: p = G^-1 g, so mean' = G^-1 mean and C' = R^T C R.
   const Eigen::Isometry3d to_sensor = grid_pose.inverse();
   const Eigen::Matrix3d& r = to_sensor.linear();
   std::vector<Distribution> distributions;
-  distributions.reserve(table.moments.size());
-  for (const VoxelMoments& voxel : table.moments) {
+  distributions.reserve(last_.moments.size());
+  for (const VoxelMoments& voxel : last_.moments) {
     if (voxel.count < config_.min_points) continue;
     Distribution d = voxel.to_distribution(config_.regularizer);
     d.mean = to_sensor * d.mean;

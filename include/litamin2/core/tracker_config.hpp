@@ -16,7 +16,7 @@ namespace litamin2 {
 
 struct KeyframeConfig {
   /// A frame that moved this far from the last keyframe becomes a keyframe, metres.
-  double distance = 1.0;
+  double distance = 2.0;
   /// ... or that turned this much, degrees.
   double angle_deg = 5.0;
 };

@@ -29,6 +29,12 @@ class VoxelMap {
 
   /// Votes the scan's points, moved to the world by `pose`, into the map.
   void insert(const PointCloud& scan, const Eigen::Isometry3d& pose);
+  /// Merges a scan's grid voxels (Voxelizer::last_voxels()) into the map for a scan whose final
+  /// pose is `pose`: each voxel's moments are moved exactly by the correction
+  /// pose * grid_pose^-1 and merged into the map voxel holding the moved mean. Costs one merge
+  /// per voxel instead of one vote per point; only points of a voxel straddling a boundary by
+  /// less than the correction (the regrid tolerance, 2 cm by default) land one voxel off.
+  void insert(const GridVoxels& voxels, const Eigen::Isometry3d& pose);
   /// Drops every voxel whose centre is farther than the configured radius from `position`.
   void remove_far(const Eigen::Vector3d& position);
 

@@ -41,16 +41,39 @@ struct VoxelMoments {
     sum_sq += other.sum_sq;
   }
 
+  /// The moments of the same points moved by (R, t), relative to `new_origin`. With
+  /// d = R origin + t - new_origin: sum' = R sum + n d,
+  /// S' = R S R^T + R sum d^T + d (R sum)^T + n d d^T.
+  VoxelMoments transformed(const Eigen::Matrix3d& r, const Eigen::Vector3d& t,
+                           const Eigen::Vector3d& new_origin) const {
+    VoxelMoments out;
+    out.origin = new_origin;
+    out.count = count;
+    const double n = static_cast<double>(count);
+    const Eigen::Vector3d d = r * origin + t - new_origin;
+    const Eigen::Vector3d rs = r * sum;
+    out.sum = rs + n * d;
+    const Eigen::Matrix3d s = r * second_moment() * r.transpose() + rs * d.transpose() +
+                              d * rs.transpose() + n * d * d.transpose();
+    out.sum_sq << s(0, 0), s(0, 1), s(0, 2), s(1, 1), s(1, 2), s(2, 2);
+    return out;
+  }
+
+  /// The sum of (p - origin)(p - origin)^T as a matrix.
+  Eigen::Matrix3d second_moment() const {
+    Eigen::Matrix3d m;
+    m << sum_sq(0), sum_sq(1), sum_sq(2), sum_sq(1), sum_sq(3), sum_sq(4), sum_sq(2), sum_sq(4),
+        sum_sq(5);
+    return m;
+  }
+
   /// Mean and (maximum-likelihood) covariance, regularised; valid for count >= 1.
   Distribution to_distribution(const RegularizerConfig& regularizer) const {
     Distribution dist;
     const double n = static_cast<double>(count);
     const Eigen::Vector3d local_mean = sum / n;
     dist.mean = origin + local_mean;
-    Eigen::Matrix3d second;
-    second << sum_sq(0), sum_sq(1), sum_sq(2), sum_sq(1), sum_sq(3), sum_sq(4), sum_sq(2),
-        sum_sq(4), sum_sq(5);
-    const Eigen::Matrix3d raw = second / n - local_mean * local_mean.transpose();
+    const Eigen::Matrix3d raw = second_moment() / n - local_mean * local_mean.transpose();
     dist.count = count;
     regularize_for_terms(regularizer, raw, dist.cov, dist.shape_cov, dist.shape_cov_inv);
     return dist;

@@ -4,6 +4,8 @@
 #include "litamin2/core/covariance_regularizer.hpp"
 #include "litamin2/core/distribution.hpp"
 #include "litamin2/core/point_cloud.hpp"
+#include "litamin2/core/voxel_key.hpp"
+#include "litamin2/core/voxel_moments.hpp"
 
 #include <Eigen/Geometry>
 #include <memory>
@@ -22,6 +24,16 @@ struct VoxelizerConfig {
   double max_range = 100.0;
   /// Covariance regularisation for flat voxels.
   RegularizerConfig regularizer;
+};
+
+/// The voxels of one scan as cut in the map's grid: all of them, before the min_points filter.
+struct GridVoxels {
+  /// The pose the scan's points were moved by before voting.
+  Eigen::Isometry3d grid_pose = Eigen::Isometry3d::Identity();
+  /// Voxel of each entry of `moments`.
+  std::vector<VoxelIndex> indices;
+  /// Moments in the grid frame, relative to their voxel's centre.
+  std::vector<VoxelMoments> moments;
 };
 
 /// Reusable voxeliser: keeps its hash table between scans to avoid reallocation.
@@ -44,11 +56,14 @@ class Voxelizer {
       const PointCloud& scan, const Eigen::Isometry3d& grid_pose = Eigen::Isometry3d::Identity());
 
   const VoxelizerConfig& config() const { return config_; }
+  /// The grid voxels of the last voxelize() call (what the map merges on a keyframe).
+  const GridVoxels& last_voxels() const { return last_; }
 
  private:
   struct Table;
   VoxelizerConfig config_;
   std::unique_ptr<Table> table_;
+  GridVoxels last_;
 };
 
 }  // namespace litamin2
