@@ -1,0 +1,30 @@
+#pragma once
+/// One scan of a sensor stream as it travels from the DDS listener to its tracker.
+
+#include "litamin2/core/point_cloud.hpp"
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+namespace litamin2::daemon {
+
+/// A ROS 2 builtin_interfaces/Time.
+struct Stamp {
+  std::int32_t sec = 0;
+  std::uint32_t nanosec = 0;
+};
+
+struct Frame {
+  /// The scan, sensor frame.
+  PointCloud cloud;
+  /// The input message's header.
+  Stamp stamp;
+  std::string frame_id;
+  /// When the listener received the sample (latency is measured from here).
+  std::chrono::steady_clock::time_point arrival{};
+  /// Per-stream arrival count, starting at 0 (dropped frames leave gaps).
+  std::uint64_t sequence = 0;
+};
+
+}  // namespace litamin2::daemon

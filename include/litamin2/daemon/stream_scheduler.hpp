@@ -1,0 +1,122 @@
+#pragma once
+/// Runs the frames of many sensor streams on one oneTBB arena: each stream's frames are
+/// processed in arrival order, one at a time (a stream has at most one task in flight, which
+/// re-schedules itself while its queue is not empty); different streams run in parallel, and a
+/// frame's own nested parallel_for shares the same workers (work stealing balances both).
+
+#include "litamin2/daemon/frame.hpp"
+#include "litamin2/daemon/stream_queue.hpp"
+
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <shared_mutex>
+#include <string>
+#include <vector>
+
+namespace litamin2::daemon {
+
+/// Counters of one stream, as seen by the scheduler.
+struct SchedulerCounters {
+  /// Frames accepted by submit().
+  std::uint64_t submitted = 0;
+  /// Frames whose processor returned normally.
+  std::uint64_t processed = 0;
+  /// Frames whose processor threw.
+  std::uint64_t failed = 0;
+  /// Frames dropped: the oldest when the queue was full, and queued frames at shutdown.
+  std::uint64_t dropped = 0;
+  /// Frames waiting now.
+  std::size_t queued = 0;
+};
+
+/// What drain() did.
+struct DrainResult {
+  /// Every accepted frame was processed or dropped and no task is running.
+  bool complete = false;
+  /// Frames still queued at the deadline, dropped.
+  std::size_t dropped = 0;
+  /// Frames still being processed when drain() returned (only if !complete).
+  std::size_t in_flight = 0;
+};
+
+class StreamScheduler {
+ public:
+  /// Called on a worker thread with each frame of a stream, in order, never concurrently for
+  /// one stream. Exceptions are caught, counted and reported to the error handler.
+  using Processor = std::function<void(Frame&)>;
+  /// Told about a processor's exception: stream id and what().
+  using ErrorHandler = std::function<void(const std::string&, const std::string&)>;
+  /// Identifies a stream in submit() and counters().
+  using Handle = std::size_t;
+
+  /// `threads` workers (0 = one per core); `queue_depth` frames per stream (>= 1).
+  StreamScheduler(int threads, std::size_t queue_depth);
+  /// Drops queued frames and waits for frames in processing.
+  ~StreamScheduler();
+
+  StreamScheduler(const StreamScheduler&) = delete;
+  StreamScheduler& operator=(const StreamScheduler&) = delete;
+
+  /// Adds a stream; thread-safe, also while frames are being processed.
+  Handle add_stream(std::string id, Processor processor);
+  /// Queues a frame of the stream and schedules the stream if it is idle. Never blocks (beyond
+  /// short locks); if the stream's queue is full, its oldest frame is dropped and counted.
+  /// Returns false (and discards the frame) once drain() has started.
+  bool submit(Handle stream, Frame frame);
+
+  /// Stops taking input, then waits up to `timeout` for queued frames to be processed; frames
+  /// still queued at the deadline are dropped; waits up to `grace` more for frames in
+  /// processing. Idempotent.
+  DrainResult drain(std::chrono::milliseconds timeout,
+                    std::chrono::milliseconds grace = std::chrono::milliseconds(500));
+
+  void set_error_handler(ErrorHandler handler);
+
+  int threads() const { return threads_; }
+  std::size_t queue_depth() const { return queue_depth_; }
+  std::size_t stream_count() const;
+  const std::string& stream_id(Handle stream) const;
+  SchedulerCounters counters(Handle stream) const;
+  /// Frames being processed now, over all streams.
+  std::size_t in_flight() const;
+  /// How long the frame that has been in processing longest has been so (zero if none): a
+  /// frame stuck for long means the daemon is wedged.
+  std::chrono::steady_clock::duration longest_in_flight(
+      std::chrono::steady_clock::time_point now = std::chrono::steady_clock::now()) const;
+
+ private:
+  struct Stream;
+
+  Stream& stream(Handle handle) const;
+  void schedule(Stream& stream);
+  void run(Stream& stream);
+  void finish_task();
+  std::size_t clear_queues();
+
+  int threads_;
+  std::size_t queue_depth_;
+  std::unique_ptr<tbb::global_control> parallelism_;
+  tbb::task_arena arena_;
+
+  mutable std::shared_mutex streams_mutex_;
+  std::vector<std::unique_ptr<Stream>> streams_;
+  /// Shared by submit(), exclusive while drain() stops input.
+  std::shared_mutex input_mutex_;
+  bool accepting_ = true;
+
+  mutable std::mutex tasks_mutex_;
+  std::condition_variable tasks_done_;
+  std::size_t active_tasks_ = 0;
+
+  std::mutex error_mutex_;
+  ErrorHandler on_error_;
+};
+
+}  // namespace litamin2::daemon
