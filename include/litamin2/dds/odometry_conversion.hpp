@@ -1,0 +1,56 @@
+#pragma once
+/// Tracker pose + covariance <-> nav_msgs/Odometry.
+///
+/// Covariance convention. The tracker (FrameResult::covariance) gives a 6x6 covariance of the
+/// left update xi = (phi, tau): T <- (exp([phi]x), tau) * T, i.e. a rotation phi about the
+/// world (odometry frame) origin followed by a translation tau, rotation block first. ROS's
+/// PoseWithCovariance::covariance is row-major 6x6 over (x, y, z, rotation about X, Y, Z), the
+/// position and fixed-axis rotation of the child frame in the header frame, translation first.
+/// To first order the left update moves the position t by dt = tau + phi x t = tau - [t]x phi
+/// and the orientation by the world-frame rotation phi, so with J = [[-[t]x, I], [I, 0]]
+/// (mapping (phi, tau) to (dt, dphi)) the ROS covariance is J * C * J^T: the blocks are swapped
+/// (translation first) and the rotation uncertainty's lever arm about the origin is added to
+/// the position part. At t = 0 this is exactly the block reordering.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <string>
+
+#include "nav_msgs/msg/Odometry.h"
+
+namespace litamin2::dds {
+
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+/// ROS pose covariance (row-major, (x, y, z, rx, ry, rz)) of a pose whose covariance is
+/// `left_covariance` in the tracker's (phi, tau) left-update coordinates (see above).
+std::array<double, 36> ros_pose_covariance(const Matrix6d& left_covariance,
+                                           const Eigen::Isometry3d& pose);
+/// Inverse of ros_pose_covariance.
+Matrix6d left_covariance_from_ros(const std::array<double, 36>& ros_covariance,
+                                  const Eigen::Isometry3d& pose);
+
+/// Builds an Odometry message: header (stamp, frame_id), child_frame_id, pose, pose
+/// covariance converted by ros_pose_covariance; twist zero with covariance diagonal -1
+/// (ROS's "unknown") unless filled in by the caller.
+nav_msgs::msg::Odometry to_odometry(const Eigen::Isometry3d& pose, const Matrix6d& left_covariance,
+                                    double stamp_seconds, const std::string& frame_id,
+                                    const std::string& child_frame_id);
+
+/// The content of an Odometry message, as the tracker's types.
+struct OdometrySample {
+  double stamp = 0.0;
+  std::string frame_id;
+  std::string child_frame_id;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  /// Covariance converted back to (phi, tau) left-update coordinates.
+  Matrix6d left_covariance = Matrix6d::Zero();
+  /// The message's covariance as a matrix (row-major in the message), ROS order.
+  Matrix6d ros_covariance = Matrix6d::Zero();
+};
+
+/// Reads an Odometry message (for subscribers and tests).
+OdometrySample from_odometry(const nav_msgs::msg::Odometry& msg);
+
+}  // namespace litamin2::dds

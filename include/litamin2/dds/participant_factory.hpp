@@ -1,0 +1,90 @@
+#pragma once
+/// Creation of Fast DDS DomainParticipants with the project's transport profiles
+/// (DESIGN.md section 4), and forwarding of Fast DDS's log to spdlog.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <fastdds/dds/core/status/StatusMask.hpp>
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
+#include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
+
+namespace litamin2::dds {
+
+/// Transport setup of a participant.
+enum class TransportProfile {
+  /// Traffic stays on this host: no builtin transports; UDPv4 bound to 127.0.0.1 (interface
+  /// whitelist) with large socket buffers; shared memory with a large segment; discovery by
+  /// unicast to the initial peer 127.0.0.1 (no multicast locators at all). The default.
+  kLoopback,
+  /// Shared memory with a large segment first, plus Fast DDS's default UDPv4 (all interfaces,
+  /// multicast discovery): for hosts that also talk to other hosts.
+  kShm,
+  /// Fast DDS's builtin transports and discovery, untouched (SHM segment 512 KiB: slow for
+  /// large scans, see DESIGN.md section 4).
+  kDefault,
+  /// A participant profile from a Fast DDS XML file (ParticipantConfig::xml_file/xml_profile).
+  kXml,
+};
+
+/// "loopback", "shm", "default", "xml".
+const char* to_string(TransportProfile profile);
+
+/// Everything needed to create a participant.
+struct ParticipantConfig {
+  /// DDS domain id (0..232 for the standard port mapping).
+  std::uint32_t domain_id = 0;
+  TransportProfile transport = TransportProfile::kLoopback;
+  /// Participant name shown in discovery tools.
+  std::string name = "litamin2";
+  /// kXml: the XML profiles file and the participant profile's name in it.
+  std::string xml_file;
+  std::string xml_profile = std::string(kDefaultXmlProfile);
+  /// kLoopback/kShm: shared-memory segment size (DESIGN.md: 32 MiB gives ~1 ms for 2 MB scans).
+  std::uint32_t shm_segment_bytes = 32u << 20;
+  /// kLoopback: UDP socket send and receive buffer sizes (the kernel caps them at
+  /// net.core.wmem_max / rmem_max).
+  std::uint32_t socket_buffer_bytes = 4u << 20;
+  /// kLoopback: the host whose unicast locators are used for discovery and data.
+  std::string loopback_address = "127.0.0.1";
+
+  /// Participant profile name used in the shipped XML files (config/dds/*.xml).
+  static constexpr std::string_view kDefaultXmlProfile = "litamin2";
+};
+
+/// Parses a command-line/config profile: "loopback", "shm", "default", or the path of an XML
+/// file ending in ".xml", optionally followed by ":PROFILE" (default profile name "litamin2").
+/// Other fields of the result keep their defaults. Returns std::nullopt and sets *error on an
+/// unknown name.
+std::optional<ParticipantConfig> parse_participant_profile(std::string_view text,
+                                                           std::string* error = nullptr);
+
+/// The participant QoS of a config (not for kXml, whose QoS comes from the file: for kXml this
+/// returns the factory's default QoS with the name set).
+eprosima::fastdds::dds::DomainParticipantQos participant_qos(const ParticipantConfig& config);
+
+/// Deletes a participant's contained entities, then the participant.
+struct ParticipantDeleter {
+  void operator()(eprosima::fastdds::dds::DomainParticipant* participant) const;
+};
+using ParticipantPtr =
+    std::unique_ptr<eprosima::fastdds::dds::DomainParticipant, ParticipantDeleter>;
+
+/// Creates a participant (installing the spdlog log forwarding first, see
+/// forward_fastdds_log_to_spdlog). Returns nullptr and sets *error (if given) when the XML file
+/// cannot be loaded, the profile does not exist or Fast DDS refuses the QoS.
+ParticipantPtr create_participant(
+    const ParticipantConfig& config, std::string* error = nullptr,
+    eprosima::fastdds::dds::DomainParticipantListener* listener = nullptr,
+    const eprosima::fastdds::dds::StatusMask& mask = eprosima::fastdds::dds::StatusMask::none());
+
+/// Replaces Fast DDS's console log consumers by one forwarding every entry to spdlog's default
+/// logger (Error -> error, Warning -> warn, Info -> debug; logger name "fastdds" in the
+/// message), and sets Fast DDS's verbosity to Warning. Idempotent and thread-safe.
+void forward_fastdds_log_to_spdlog();
+
+}  // namespace litamin2::dds

@@ -1,0 +1,38 @@
+#pragma once
+/// QoS of the product's topics (DESIGN.md section 4 table). Every profile uses Fast DDS's
+/// PREALLOCATED_WITH_REALLOC history memory, as samples (scans) have unbounded size.
+
+#include <cstdint>
+
+#include <fastdds/rtps/writer/WriterDiscoveryInfo.h>
+#include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
+#include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
+
+namespace litamin2::dds {
+
+/// Reader of rt/<stream>/points. Best-effort matches every writer (best-effort and reliable);
+/// reliable (to be used when discovery shows a reliable writer, see writer_is_reliable) makes
+/// a reliable writer repair lost fragments of large scans. Keep-last `depth`.
+eprosima::fastdds::dds::DataReaderQos points_reader_qos(bool reliable = false,
+                                                        std::int32_t depth = 10);
+/// Writer of rt/<stream>/points (the replay tool): reliable keep-all by default, so that a
+/// slower reader throttles the writer instead of losing scans (the writer blocks in write()
+/// for up to `max_blocking_ms` when its history is full); best_effort: keep-last `depth`.
+eprosima::fastdds::dds::DataWriterQos points_writer_qos(bool best_effort = false,
+                                                        std::int32_t depth = 10,
+                                                        std::int32_t max_blocking_ms = 10000);
+/// rt/<stream>/odom: reliable, volatile, keep-last `depth`.
+eprosima::fastdds::dds::DataWriterQos odom_writer_qos(std::int32_t depth = 100);
+eprosima::fastdds::dds::DataReaderQos odom_reader_qos(std::int32_t depth = 100);
+/// rt/litamin2/map_patches: reliable, transient-local, keep-all (per stream instance; a late
+/// reader receives every patch still held by the writer).
+eprosima::fastdds::dds::DataWriterQos map_patches_writer_qos();
+eprosima::fastdds::dds::DataReaderQos map_patches_reader_qos();
+/// rt/litamin2/status: reliable, volatile, keep-last `depth`.
+eprosima::fastdds::dds::DataWriterQos status_writer_qos(std::int32_t depth = 10);
+eprosima::fastdds::dds::DataReaderQos status_reader_qos(std::int32_t depth = 10);
+
+/// True when a discovered writer offers reliable reliability.
+bool writer_is_reliable(const eprosima::fastrtps::rtps::WriterDiscoveryInfo& info);
+
+}  // namespace litamin2::dds

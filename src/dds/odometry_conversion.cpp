@@ -1,0 +1,93 @@
+#include "litamin2/dds/odometry_conversion.hpp"
+
+#include "litamin2/dds/pose_conversion.hpp"
+#include "litamin2/dds/time_conversion.hpp"
+
+namespace litamin2::dds {
+
+namespace {
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
+}
+
+/// J mapping the left update (phi, tau) to (dt, dphi) of the ROS order (see the header).
+Matrix6d left_to_ros_jacobian(const Eigen::Isometry3d& pose) {
+  Matrix6d j = Matrix6d::Zero();
+  j.block<3, 3>(0, 0) = -skew(pose.translation());
+  j.block<3, 3>(0, 3) = Eigen::Matrix3d::Identity();
+  j.block<3, 3>(3, 0) = Eigen::Matrix3d::Identity();
+  return j;
+}
+
+/// Inverse of left_to_ros_jacobian: (dt, dphi) -> (phi = dphi, tau = dt + [t]x dphi).
+Matrix6d ros_to_left_jacobian(const Eigen::Isometry3d& pose) {
+  Matrix6d j = Matrix6d::Zero();
+  j.block<3, 3>(0, 3) = Eigen::Matrix3d::Identity();
+  j.block<3, 3>(3, 0) = Eigen::Matrix3d::Identity();
+  j.block<3, 3>(3, 3) = skew(pose.translation());
+  return j;
+}
+
+std::array<double, 36> to_row_major(const Matrix6d& m) {
+  std::array<double, 36> out{};
+  for (int r = 0; r < 6; ++r) {
+    for (int c = 0; c < 6; ++c) out[static_cast<std::size_t>(6 * r + c)] = m(r, c);
+  }
+  return out;
+}
+
+Matrix6d from_row_major(const std::array<double, 36>& a) {
+  Matrix6d m;
+  for (int r = 0; r < 6; ++r) {
+    for (int c = 0; c < 6; ++c) m(r, c) = a[static_cast<std::size_t>(6 * r + c)];
+  }
+  return m;
+}
+
+}  // namespace
+
+std::array<double, 36> ros_pose_covariance(const Matrix6d& left_covariance,
+                                           const Eigen::Isometry3d& pose) {
+  const Matrix6d j = left_to_ros_jacobian(pose);
+  Matrix6d ros = j * left_covariance * j.transpose();
+  ros = 0.5 * (ros + ros.transpose()).eval();
+  return to_row_major(ros);
+}
+
+Matrix6d left_covariance_from_ros(const std::array<double, 36>& ros_covariance,
+                                  const Eigen::Isometry3d& pose) {
+  const Matrix6d j = ros_to_left_jacobian(pose);
+  Matrix6d left = j * from_row_major(ros_covariance) * j.transpose();
+  return 0.5 * (left + left.transpose());
+}
+
+nav_msgs::msg::Odometry to_odometry(const Eigen::Isometry3d& pose, const Matrix6d& left_covariance,
+                                    double stamp_seconds, const std::string& frame_id,
+                                    const std::string& child_frame_id) {
+  nav_msgs::msg::Odometry msg;
+  msg.header().stamp(to_time(stamp_seconds));
+  msg.header().frame_id(frame_id);
+  msg.child_frame_id(child_frame_id);
+  msg.pose().pose(to_pose_msg(pose));
+  msg.pose().covariance(ros_pose_covariance(left_covariance, pose));
+  std::array<double, 36> twist_cov{};
+  for (std::size_t i = 0; i < 6; ++i) twist_cov[7 * i] = -1.0;
+  msg.twist().covariance(twist_cov);
+  return msg;
+}
+
+OdometrySample from_odometry(const nav_msgs::msg::Odometry& msg) {
+  OdometrySample sample;
+  sample.stamp = to_seconds(msg.header().stamp());
+  sample.frame_id = msg.header().frame_id();
+  sample.child_frame_id = msg.child_frame_id();
+  sample.pose = from_pose_msg(msg.pose().pose());
+  sample.ros_covariance = from_row_major(msg.pose().covariance());
+  sample.left_covariance = left_covariance_from_ros(msg.pose().covariance(), sample.pose);
+  return sample;
+}
+
+}  // namespace litamin2::dds

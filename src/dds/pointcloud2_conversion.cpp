@@ -1,0 +1,297 @@
+#include "litamin2/dds/pointcloud2_conversion.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "litamin2/dds/time_conversion.hpp"
+
+namespace litamin2::dds {
+
+namespace {
+
+// sensor_msgs/PointField datatype codes.
+constexpr std::uint8_t kInt8 = 1;
+constexpr std::uint8_t kUint8 = 2;
+constexpr std::uint8_t kInt16 = 3;
+constexpr std::uint8_t kUint16 = 4;
+constexpr std::uint8_t kInt32 = 5;
+constexpr std::uint8_t kUint32 = 6;
+constexpr std::uint8_t kFloat32 = 7;
+constexpr std::uint8_t kFloat64 = 8;
+
+/// Size in bytes of a datatype, 0 for an unknown code.
+std::size_t datatype_size(std::uint8_t datatype) {
+  switch (datatype) {
+    case kInt8:
+    case kUint8:
+      return 1;
+    case kInt16:
+    case kUint16:
+      return 2;
+    case kInt32:
+    case kUint32:
+    case kFloat32:
+      return 4;
+    case kFloat64:
+      return 8;
+    default:
+      return 0;
+  }
+}
+
+bool host_is_big_endian() {
+  const std::uint16_t probe = 1;
+  std::uint8_t first = 0;
+  std::memcpy(&first, &probe, 1);
+  return first == 0;
+}
+
+/// Reads a value of `Size` bytes at p (any alignment), byte-swapped if `swap`.
+template <typename T>
+T load(const std::uint8_t* p, bool swap) {
+  std::array<std::uint8_t, sizeof(T)> bytes;
+  std::memcpy(bytes.data(), p, sizeof(T));
+  if (swap) {
+    for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(bytes[i], bytes[sizeof(T) - 1 - i]);
+  }
+  T value;
+  std::memcpy(&value, bytes.data(), sizeof(T));
+  return value;
+}
+
+/// Reads one value of a known datatype as float (doubles are rounded to float; values out of
+/// float's range become +-Inf).
+float read_as_float(const std::uint8_t* p, std::uint8_t datatype, bool swap) {
+  switch (datatype) {
+    case kInt8:
+      return static_cast<float>(load<std::int8_t>(p, false));
+    case kUint8:
+      return static_cast<float>(load<std::uint8_t>(p, false));
+    case kInt16:
+      return static_cast<float>(load<std::int16_t>(p, swap));
+    case kUint16:
+      return static_cast<float>(load<std::uint16_t>(p, swap));
+    case kInt32:
+      return static_cast<float>(load<std::int32_t>(p, swap));
+    case kUint32:
+      return static_cast<float>(load<std::uint32_t>(p, swap));
+    case kFloat32:
+      return load<float>(p, swap);
+    case kFloat64: {
+      const double v = load<double>(p, swap);
+      if (std::isfinite(v) &&
+          std::fabs(v) > static_cast<double>(std::numeric_limits<float>::max())) {
+        return v > 0 ? std::numeric_limits<float>::infinity()
+                     : -std::numeric_limits<float>::infinity();
+      }
+      return static_cast<float>(v);
+    }
+    default:
+      return 0.0f;
+  }
+}
+
+/// A field the conversion reads.
+struct FieldSpec {
+  const char* name;
+  bool found = false;
+  std::uint32_t offset = 0;
+  std::uint8_t datatype = 0;
+};
+
+CloudError fail(CloudConversion& out, CloudError error, std::string message) {
+  out.error = error;
+  out.message = std::move(message);
+  out.cloud.points.clear();
+  out.cloud.intensities.clear();
+  return error;
+}
+
+}  // namespace
+
+const char* to_string(CloudError error) {
+  switch (error) {
+    case CloudError::kNone:
+      return "none";
+    case CloudError::kMissingField:
+      return "missing_field";
+    case CloudError::kDuplicateField:
+      return "duplicate_field";
+    case CloudError::kBadFieldType:
+      return "bad_field_type";
+    case CloudError::kFieldOutOfBounds:
+      return "field_out_of_bounds";
+    case CloudError::kBadPointStep:
+      return "bad_point_step";
+    case CloudError::kBadRowStep:
+      return "bad_row_step";
+    case CloudError::kDataSizeMismatch:
+      return "data_size_mismatch";
+    case CloudError::kTooManyPoints:
+      return "too_many_points";
+  }
+  return "unknown";
+}
+
+CloudConversion from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
+                                 const CloudConversionOptions& options) {
+  CloudConversion out;
+  from_pointcloud2(msg, options, out);
+  return out;
+}
+
+CloudError from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
+                            const CloudConversionOptions& options, CloudConversion& out) {
+  out.error = CloudError::kNone;
+  out.message.clear();
+  out.cloud.points.clear();
+  out.cloud.intensities.clear();
+  out.non_finite = 0;
+
+  const std::uint64_t width = msg.width();
+  const std::uint64_t height = msg.height();
+  const std::uint64_t point_step = msg.point_step();
+  const std::uint64_t row_step = msg.row_step();
+  // Each factor is < 2^32, so these products cannot overflow 64 bits.
+  const std::uint64_t total = width * height;
+  out.total_points = static_cast<std::size_t>(total);
+
+  // Fields: x, y, z required (FLOAT32/FLOAT64), intensity optional (any numeric type).
+  std::array<FieldSpec, 4> specs{{{"x"}, {"y"}, {"z"}, {"intensity"}}};
+  for (const auto& field : msg.fields()) {
+    for (std::size_t k = 0; k < specs.size(); ++k) {
+      FieldSpec& spec = specs[k];
+      if (field.name() != spec.name) continue;
+      if (spec.found) {
+        return fail(out, CloudError::kDuplicateField,
+                    std::string("field '") + spec.name + "' appears more than once");
+      }
+      spec.found = true;
+      spec.offset = field.offset();
+      spec.datatype = field.datatype();
+      const std::size_t size = datatype_size(field.datatype());
+      const bool coordinate = k < 3;
+      if (size == 0 ||
+          (coordinate && field.datatype() != kFloat32 && field.datatype() != kFloat64)) {
+        return fail(out, CloudError::kBadFieldType,
+                    std::string("field '") + spec.name + "' has datatype " +
+                        std::to_string(field.datatype()) +
+                        (coordinate ? " (x, y, z must be FLOAT32 (7) or FLOAT64 (8))"
+                                    : " (not a PointField datatype 1..8)"));
+      }
+      if (field.count() == 0) {
+        return fail(out, CloudError::kBadFieldType,
+                    std::string("field '") + spec.name + "' has count 0");
+      }
+      const std::uint64_t end = static_cast<std::uint64_t>(field.offset()) +
+                                static_cast<std::uint64_t>(size) * field.count();
+      if (end > point_step) {
+        return fail(out, CloudError::kFieldOutOfBounds,
+                    std::string("field '") + spec.name + "' (offset " +
+                        std::to_string(field.offset()) + ", " + std::to_string(size) + " x " +
+                        std::to_string(field.count()) + " bytes) does not fit in point_step " +
+                        std::to_string(point_step));
+      }
+    }
+  }
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (!specs[k].found) {
+      return fail(out, CloudError::kMissingField, std::string("no field '") + specs[k].name + "'");
+    }
+  }
+
+  if (total > 0 && point_step == 0) {
+    return fail(out, CloudError::kBadPointStep, "point_step is 0");
+  }
+  if (row_step < width * point_step) {
+    return fail(out, CloudError::kBadRowStep,
+                "row_step " + std::to_string(row_step) + " < width " + std::to_string(width) +
+                    " * point_step " + std::to_string(point_step));
+  }
+  const std::uint64_t expected = row_step * height;
+  if (static_cast<std::uint64_t>(msg.data().size()) != expected) {
+    return fail(out, CloudError::kDataSizeMismatch,
+                "data has " + std::to_string(msg.data().size()) + " bytes, row_step " +
+                    std::to_string(row_step) + " * height " + std::to_string(height) + " = " +
+                    std::to_string(expected));
+  }
+  if (options.max_points > 0 && total > options.max_points) {
+    return fail(out, CloudError::kTooManyPoints,
+                std::to_string(total) + " points > limit " + std::to_string(options.max_points));
+  }
+  if (total == 0) return CloudError::kNone;
+
+  const bool swap = msg.is_bigendian() != host_is_big_endian();
+  const bool with_intensity = options.read_intensity && specs[3].found;
+  auto& points = out.cloud.points;
+  auto& intensities = out.cloud.intensities;
+  points.reserve(static_cast<std::size_t>(total));
+  if (with_intensity) intensities.reserve(static_cast<std::size_t>(total));
+
+  const std::uint8_t* data = msg.data().data();
+  const bool fast = !swap && specs[0].datatype == kFloat32 && specs[1].datatype == kFloat32 &&
+                    specs[2].datatype == kFloat32;
+  for (std::uint64_t row = 0; row < height; ++row) {
+    const std::uint8_t* row_ptr = data + row * row_step;
+    for (std::uint64_t col = 0; col < width; ++col) {
+      const std::uint8_t* p = row_ptr + col * point_step;
+      Eigen::Vector3f v;
+      if (fast) {
+        std::memcpy(&v.x(), p + specs[0].offset, 4);
+        std::memcpy(&v.y(), p + specs[1].offset, 4);
+        std::memcpy(&v.z(), p + specs[2].offset, 4);
+      } else {
+        v.x() = read_as_float(p + specs[0].offset, specs[0].datatype, swap);
+        v.y() = read_as_float(p + specs[1].offset, specs[1].datatype, swap);
+        v.z() = read_as_float(p + specs[2].offset, specs[2].datatype, swap);
+      }
+      if (!std::isfinite(v.x()) || !std::isfinite(v.y()) || !std::isfinite(v.z())) {
+        ++out.non_finite;
+        continue;
+      }
+      points.push_back(v);
+      if (with_intensity) {
+        const float i = read_as_float(p + specs[3].offset, specs[3].datatype, swap);
+        intensities.push_back(std::isfinite(i) ? i : 0.0f);
+      }
+    }
+  }
+  return CloudError::kNone;
+}
+
+sensor_msgs::msg::PointCloud2 to_pointcloud2(const PointCloud& cloud, double stamp_seconds,
+                                             const std::string& frame_id) {
+  sensor_msgs::msg::PointCloud2 msg;
+  msg.header().stamp(to_time(stamp_seconds));
+  msg.header().frame_id(frame_id);
+  const char* names[4] = {"x", "y", "z", "intensity"};
+  std::vector<sensor_msgs::msg::PointField> fields(4);
+  for (std::uint32_t k = 0; k < 4; ++k) {
+    fields[k].name(names[k]);
+    fields[k].offset(4 * k);
+    fields[k].datatype(kFloat32);
+    fields[k].count(1);
+  }
+  msg.fields(std::move(fields));
+  const std::size_t n = cloud.points.size();
+  const bool with_intensity = cloud.intensities.size() == n;
+  msg.height(1);
+  msg.width(static_cast<std::uint32_t>(n));
+  msg.is_bigendian(host_is_big_endian());
+  msg.point_step(16);
+  msg.row_step(static_cast<std::uint32_t>(16 * n));
+  msg.is_dense(true);
+  std::vector<std::uint8_t> data(16 * n);
+  std::uint8_t* p = data.data();
+  for (std::size_t i = 0; i < n; ++i, p += 16) {
+    const Eigen::Vector3f& v = cloud.points[i];
+    const float record[4] = {v.x(), v.y(), v.z(), with_intensity ? cloud.intensities[i] : 0.0f};
+    std::memcpy(p, record, 16);
+  }
+  msg.data(std::move(data));
+  return msg;
+}
+
+}  // namespace litamin2::dds

@@ -1,0 +1,98 @@
+#include "litamin2/dds/qos.hpp"
+
+#include <fastdds/rtps/builtin/data/WriterProxyData.h>
+
+namespace litamin2::dds {
+
+namespace fdds = eprosima::fastdds::dds;
+namespace rtps = eprosima::fastrtps::rtps;
+
+namespace {
+
+template <typename Qos>
+void common(Qos& qos, fdds::ReliabilityQosPolicyKind reliability,
+            fdds::DurabilityQosPolicyKind durability, fdds::HistoryQosPolicyKind history,
+            std::int32_t depth) {
+  qos.reliability().kind = reliability;
+  qos.durability().kind = durability;
+  qos.history().kind = history;
+  qos.history().depth = depth > 0 ? depth : 1;
+  qos.endpoint().history_memory_policy = rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
+}
+
+}  // namespace
+
+fdds::DataReaderQos points_reader_qos(bool reliable, std::int32_t depth) {
+  fdds::DataReaderQos qos = fdds::DATAREADER_QOS_DEFAULT;
+  common(qos, reliable ? fdds::RELIABLE_RELIABILITY_QOS : fdds::BEST_EFFORT_RELIABILITY_QOS,
+         fdds::VOLATILE_DURABILITY_QOS, fdds::KEEP_LAST_HISTORY_QOS, depth);
+  return qos;
+}
+
+fdds::DataWriterQos points_writer_qos(bool best_effort, std::int32_t depth,
+                                      std::int32_t max_blocking_ms) {
+  fdds::DataWriterQos qos = fdds::DATAWRITER_QOS_DEFAULT;
+  if (best_effort) {
+    common(qos, fdds::BEST_EFFORT_RELIABILITY_QOS, fdds::VOLATILE_DURABILITY_QOS,
+           fdds::KEEP_LAST_HISTORY_QOS, depth);
+  } else {
+    common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::VOLATILE_DURABILITY_QOS,
+           fdds::KEEP_ALL_HISTORY_QOS, depth);
+    // Keep-all: a full history (max_samples) blocks write() until readers acknowledge.
+    qos.resource_limits().max_samples = depth > 0 ? depth : 1;
+    qos.resource_limits().max_instances = 1;
+    qos.resource_limits().max_samples_per_instance = depth > 0 ? depth : 1;
+    qos.resource_limits().allocated_samples = depth > 0 ? depth : 1;
+    qos.reliability().max_blocking_time =
+        eprosima::fastrtps::Duration_t(max_blocking_ms / 1000, (max_blocking_ms % 1000) * 1000000u);
+  }
+  return qos;
+}
+
+fdds::DataWriterQos odom_writer_qos(std::int32_t depth) {
+  fdds::DataWriterQos qos = fdds::DATAWRITER_QOS_DEFAULT;
+  common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::VOLATILE_DURABILITY_QOS,
+         fdds::KEEP_LAST_HISTORY_QOS, depth);
+  return qos;
+}
+
+fdds::DataReaderQos odom_reader_qos(std::int32_t depth) {
+  fdds::DataReaderQos qos = fdds::DATAREADER_QOS_DEFAULT;
+  common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::VOLATILE_DURABILITY_QOS,
+         fdds::KEEP_LAST_HISTORY_QOS, depth);
+  return qos;
+}
+
+fdds::DataWriterQos map_patches_writer_qos() {
+  fdds::DataWriterQos qos = fdds::DATAWRITER_QOS_DEFAULT;
+  common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::TRANSIENT_LOCAL_DURABILITY_QOS,
+         fdds::KEEP_ALL_HISTORY_QOS, 1);
+  return qos;
+}
+
+fdds::DataReaderQos map_patches_reader_qos() {
+  fdds::DataReaderQos qos = fdds::DATAREADER_QOS_DEFAULT;
+  common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::TRANSIENT_LOCAL_DURABILITY_QOS,
+         fdds::KEEP_ALL_HISTORY_QOS, 1);
+  return qos;
+}
+
+fdds::DataWriterQos status_writer_qos(std::int32_t depth) {
+  fdds::DataWriterQos qos = fdds::DATAWRITER_QOS_DEFAULT;
+  common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::VOLATILE_DURABILITY_QOS,
+         fdds::KEEP_LAST_HISTORY_QOS, depth);
+  return qos;
+}
+
+fdds::DataReaderQos status_reader_qos(std::int32_t depth) {
+  fdds::DataReaderQos qos = fdds::DATAREADER_QOS_DEFAULT;
+  common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::VOLATILE_DURABILITY_QOS,
+         fdds::KEEP_LAST_HISTORY_QOS, depth);
+  return qos;
+}
+
+bool writer_is_reliable(const rtps::WriterDiscoveryInfo& info) {
+  return info.info.m_qos.m_reliability.kind == fdds::RELIABLE_RELIABILITY_QOS;
+}
+
+}  // namespace litamin2::dds
