@@ -54,6 +54,7 @@ FrameResult Tracker::process(const PointCloud& scan) {
     frame.times.voxelize_ms = registration.voxelize_ms;
     frame.times.register_ms = registration.register_ms;
     frame.iterations = result.iterations;
+    frame.voxelizations = registration.voxelizations;
     frame.correspondences = result.correspondences;
     if (result.valid) {
       estimate = result.pose;
@@ -63,6 +64,7 @@ FrameResult Tracker::process(const PointCloud& scan) {
   } else {
     const auto start = std::chrono::steady_clock::now();
     source_ = voxelizer_.voxelize(scan, predicted);
+    frame.voxelizations = 1;
     frame.times.voxelize_ms = elapsed_ms(start);
   }
   frame.source_distributions = static_cast<int>(source_.size());

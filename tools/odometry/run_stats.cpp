@@ -18,6 +18,7 @@ void RunStats::add(const FrameResult& frame) {
   failures_ += (!frame.registered && total_ms_.size() > 1) ? 1 : 0;
   distributions_ += static_cast<std::size_t>(frame.source_distributions);
   iterations_ += static_cast<std::size_t>(frame.iterations);
+  voxelizations_ += static_cast<std::size_t>(frame.voxelizations);
 }
 
 double RunStats::frames_per_second() const {
@@ -57,6 +58,7 @@ std::string RunStats::to_json(const std::string& mode, double voxel_size, int th
       << ", \"map_update\": " << sum_.map_update_ms / n << "},\n"
       << "  \"mean_distributions_per_scan\": " << distributions_ / n << ",\n"
       << "  \"mean_newton_iterations\": " << iterations_ / n << ",\n"
+      << "  \"mean_voxelizations\": " << voxelizations_ / n << ",\n"
       << "  \"keyframes\": " << keyframes_ << ",\n"
       << "  \"registration_failures\": " << failures_ << ",\n"
       << "  \"peak_memory_mib\": " << peak_memory_mib();

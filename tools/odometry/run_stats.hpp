@@ -39,6 +39,7 @@ class RunStats {
   std::size_t failures_ = 0;
   std::size_t distributions_ = 0;
   std::size_t iterations_ = 0;
+  std::size_t voxelizations_ = 0;
 };
 
 /// Peak resident memory of this process, MiB.

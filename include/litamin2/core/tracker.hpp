@@ -34,6 +34,8 @@ struct FrameResult {
   /// the constant-velocity prediction).
   bool registered = false;
   int iterations = 0;
+  /// Times the scan was voxelised (1 + re-voxelisations after large corrections).
+  int voxelizations = 0;
   int source_distributions = 0;
   int correspondences = 0;
   StageTimes times;
