@@ -30,18 +30,17 @@ struct CovShape {
 };
 
 namespace detail {
-/// K_ij = Tr([e_i]x X [e_j]x Y) for the bilinear form Tr(U X V Y).
+/// K_ij = Tr([e_i]x X [e_j]x Y) for the bilinear form Tr(U X V Y). Since ([e_i]x)_ab =
+/// -eps_iab, K_ij = sum eps_iab eps_jcd X_bc Y_da, which has four non-zero terms: with
+/// (a, b) = (i+1, i+2) or (i+2, i+1) and (c, d) = (j+1, j+2) or (j+2, j+1) (indices mod 3).
 inline Eigen::Matrix3d skew_sandwich_traces(const Eigen::Matrix3d& x, const Eigen::Matrix3d& y) {
-  Eigen::Matrix3d left[3];
-  Eigen::Matrix3d right_t[3];
-  for (int i = 0; i < 3; ++i) {
-    const Eigen::Matrix3d e = skew(Eigen::Vector3d::Unit(i));
-    left[i] = e * x;
-    right_t[i] = (e * y).transpose();
-  }
   Eigen::Matrix3d k;
   for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) k(i, j) = left[i].cwiseProduct(right_t[j]).sum();
+    const int a = (i + 1) % 3, b = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int c = (j + 1) % 3, d = (j + 2) % 3;
+      k(i, j) = x(b, c) * y(d, a) - x(b, d) * y(c, a) - x(a, c) * y(d, b) + x(a, d) * y(c, b);
+    }
   }
   return k;
 }
