@@ -205,13 +205,21 @@ const char* to_string(TransportProfile profile) {
 }
 
 bool is_valid_stream_id(const std::string& id) {
-  if (id.empty() || id.front() == '/' || id.back() == '/') return false;
-  char previous = 0;
-  for (char c : id) {
-    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                    c == '_' || c == '-' || c == '/';
-    if (!ok || (c == '/' && previous == '/')) return false;
-    previous = c;
+  // ROS 2 name rules for a relative namespace (as litamin2::dds::stream_id_error checks them):
+  // tokens of letters, digits and '_' separated by single '/', no token starting with a digit,
+  // no "__", at most 245 characters so that every topic of the stream stays within 255.
+  if (id.empty() || id.size() > 245 || id.find("__") != std::string::npos) return false;
+  std::size_t token_start = 0;
+  for (std::size_t i = 0; i <= id.size(); ++i) {
+    if (i == id.size() || id[i] == '/') {
+      if (i == token_start) return false;  // empty token: leading, trailing or double '/'
+      if (id[token_start] >= '0' && id[token_start] <= '9') return false;
+      token_start = i + 1;
+      continue;
+    }
+    const char c = id[i];
+    if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_'))
+      return false;
   }
   return true;
 }
@@ -307,8 +315,9 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
       StreamConfig stream;
       if (!s.read("id", stream.id)) throw ConfigError(path + ".id: required");
       if (!is_valid_stream_id(stream.id))
-        throw ConfigError(path + ".id: '" + stream.id +
-                          "' is not a valid stream id (letters, digits, _, -, /)");
+        throw ConfigError(
+            path + ".id: '" + stream.id +
+            "' is not a valid stream id (ROS name tokens: letters, digits, _; separated by /)");
       if (!ids.insert(stream.id).second)
         throw ConfigError(path + ".id: duplicate stream id '" + stream.id + "'");
       if (!s.read("topic", stream.topic)) stream.topic = "rt/" + stream.id + "/points";

@@ -143,8 +143,10 @@ TEST(DaemonConfig, ErrorsNameKeyAndValue) {
 
 TEST(DaemonConfig, StreamErrors) {
   EXPECT_EQ(error_of("streams: [{topic: rt/a/points}]"), "streams[0].id: required");
-  EXPECT_EQ(error_of("streams: [{id: 'bad id'}]"),
-            "streams[0].id: 'bad id' is not a valid stream id (letters, digits, _, -, /)");
+  EXPECT_EQ(
+      error_of("streams: [{id: 'bad id'}]"),
+      "streams[0].id: 'bad id' is not a valid stream id (ROS name tokens: letters, digits, _; "
+      "separated by /)");
   EXPECT_EQ(error_of("streams: [{id: a}, {id: a}]"), "streams[1].id: duplicate stream id 'a'");
   EXPECT_EQ(error_of("streams: [{id: a}, {id: b, topic: rt/a/points}]"),
             "streams[1].topic: 'rt/a/points' is used by another stream");
@@ -196,7 +198,11 @@ TEST(TopicPattern, MatchesAndExtractsStreamId) {
 }
 
 TEST(TopicPattern, StreamIds) {
-  EXPECT_TRUE(is_valid_stream_id("car_1-front"));
+  EXPECT_TRUE(is_valid_stream_id("car_1_front"));
+  EXPECT_FALSE(is_valid_stream_id("car-1"));
+  EXPECT_FALSE(is_valid_stream_id("1car"));
+  EXPECT_FALSE(is_valid_stream_id("fleet/2"));
+  EXPECT_FALSE(is_valid_stream_id("a__b"));
   EXPECT_TRUE(is_valid_stream_id("fleet/car1"));
   EXPECT_FALSE(is_valid_stream_id(""));
   EXPECT_FALSE(is_valid_stream_id("/car"));

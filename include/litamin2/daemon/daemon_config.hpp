@@ -110,7 +110,8 @@ DaemonConfig load_daemon_config(const std::string& path);
 /// match (or the id would be empty or contain characters not allowed in a stream id).
 std::optional<std::string> match_topic_pattern(const std::string& pattern,
                                                const std::string& topic);
-/// Stream ids: letters, digits, '_', '-', and '/' between non-empty parts (a ROS namespace).
+/// Stream ids are ROS 2 relative namespaces: tokens of letters, digits and '_' (not starting
+/// with a digit, no "__") separated by single '/'.
 bool is_valid_stream_id(const std::string& id);
 
 /// A stream for a discovered topic: id from the pattern, the global tracker, no extrinsic.

@@ -1,0 +1,46 @@
+#pragma once
+/// The per-frame work of one stream: run its tracker on the scan, move the pose to the base
+/// frame by the sensor extrinsic, publish odometry (and the keyframe's distributions) through
+/// a ResultSink, and record the statistics. Used as the stream's StreamScheduler::Processor.
+
+#include "litamin2/core/tracker.hpp"
+#include "litamin2/daemon/daemon_config.hpp"
+#include "litamin2/daemon/frame.hpp"
+#include "litamin2/daemon/result_sink.hpp"
+#include "litamin2/daemon/stream_stats.hpp"
+
+#include <memory>
+
+namespace litamin2::daemon {
+
+class StreamProcessor {
+ public:
+  /// Throws ConfigError if the stream's tracker config is invalid. `sink` and `stats` must
+  /// outlive the processor.
+  StreamProcessor(StreamConfig config, ResultSink& sink, StreamStats& stats);
+
+  /// Processes the next frame of the stream (frames must come in order, one at a time).
+  void process(Frame& frame);
+
+  const StreamConfig& config() const { return config_; }
+  const Tracker& tracker() const { return *tracker_; }
+  std::uint64_t keyframes() const { return keyframes_; }
+
+ private:
+  StreamConfig config_;
+  bool has_extrinsic_;
+  Eigen::Isometry3d extrinsic_inverse_;
+  std::unique_ptr<Tracker> tracker_;
+  ResultSink& sink_;
+  StreamStats& stats_;
+  std::uint64_t keyframes_ = 0;
+};
+
+/// The pose of the base in the odometry frame (the base at the first scan) from the sensor's
+/// pose in the first sensor frame: E * sensor_pose * E^-1 with E the sensor-in-base extrinsic.
+Eigen::Isometry3d base_pose(const Eigen::Isometry3d& sensor_pose,
+                            const Eigen::Isometry3d& extrinsic);
+/// The (phi, tau) left-update covariance of base_pose() from the sensor pose's: Ad_E C Ad_E^T.
+Matrix6d base_covariance(const Matrix6d& sensor_covariance, const Eigen::Isometry3d& extrinsic);
+
+}  // namespace litamin2::daemon

@@ -1,0 +1,59 @@
+#include "litamin2/daemon/stream_processor.hpp"
+
+namespace litamin2::daemon {
+namespace {
+Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return m;
+}
+}  // namespace
+
+Eigen::Isometry3d base_pose(const Eigen::Isometry3d& sensor_pose,
+                            const Eigen::Isometry3d& extrinsic) {
+  return extrinsic * sensor_pose * extrinsic.inverse();
+}
+
+Matrix6d base_covariance(const Matrix6d& sensor_covariance, const Eigen::Isometry3d& extrinsic) {
+  // exp(xi) moved by E: E exp(xi) T E^-1 = exp(Ad_E xi) (E T E^-1), with, for xi = (phi, tau),
+  // Ad_E = [[R, 0], [[t]x R, R]].
+  const Eigen::Matrix3d r = extrinsic.linear();
+  Matrix6d ad = Matrix6d::Zero();
+  ad.topLeftCorner<3, 3>() = r;
+  ad.bottomLeftCorner<3, 3>() = skew(extrinsic.translation()) * r;
+  ad.bottomRightCorner<3, 3>() = r;
+  return ad * sensor_covariance * ad.transpose();
+}
+
+StreamProcessor::StreamProcessor(StreamConfig config, ResultSink& sink, StreamStats& stats)
+    : config_(std::move(config)),
+      has_extrinsic_(!config_.extrinsic.matrix().isIdentity(0.0)),
+      extrinsic_inverse_(config_.extrinsic.inverse()),
+      tracker_(std::make_unique<Tracker>(config_.tracker)),
+      sink_(sink),
+      stats_(stats) {}
+
+void StreamProcessor::process(Frame& frame) {
+  const FrameResult result = tracker_->process(frame.cloud);
+  // Without an extrinsic the published pose is the tracker's, bit for bit.
+  const Eigen::Isometry3d sensor_pose = result.pose;
+  const Eigen::Isometry3d pose =
+      has_extrinsic_ ? Eigen::Isometry3d(config_.extrinsic * sensor_pose * extrinsic_inverse_)
+                     : sensor_pose;
+  const Matrix6d covariance =
+      has_extrinsic_ ? base_covariance(result.covariance, config_.extrinsic) : result.covariance;
+  sink_.publish_odometry(OdometryOutput{config_.id, frame.stamp, pose, covariance, result.keyframe,
+                                        result.registered, frame.sequence});
+  if (result.keyframe) {
+    const Eigen::Isometry3d keyframe_pose =
+        has_extrinsic_ ? Eigen::Isometry3d(config_.extrinsic * sensor_pose) : sensor_pose;
+    sink_.publish_keyframe(KeyframeOutput{config_.id, keyframes_, frame.stamp, keyframe_pose,
+                                          covariance, tracker_->map().voxel_size(),
+                                          tracker_->last_distributions()});
+    ++keyframes_;
+  }
+  stats_.record_result(frame.arrival, std::chrono::steady_clock::now(), result.keyframe,
+                       result.registered, tracker_->map().distributions().size());
+}
+
+}  // namespace litamin2::daemon

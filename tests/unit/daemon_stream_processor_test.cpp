@@ -1,0 +1,145 @@
+// Per-frame processing of a stream: poses equal a plain Tracker's bit for bit, keyframes are
+// published with their distributions, the extrinsic moves poses and covariances to the base.
+
+#include "litamin2/daemon/stream_processor.hpp"
+#include "support/synthetic_scene.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+using namespace litamin2;
+using namespace litamin2::daemon;
+
+namespace {
+
+struct Recorded {
+  std::string stream;
+  Eigen::Isometry3d pose;
+  Matrix6d covariance;
+  bool keyframe;
+  std::uint64_t sequence;
+  Stamp stamp;
+};
+
+class RecordingSink : public ResultSink {
+ public:
+  void publish_odometry(const OdometryOutput& o) override {
+    odometry.push_back({o.stream, o.pose, o.covariance, o.keyframe, o.sequence, o.stamp});
+  }
+  void publish_keyframe(const KeyframeOutput& k) override {
+    keyframe_ids.push_back(k.keyframe_id);
+    keyframe_poses.push_back(k.pose);
+    keyframe_sizes.push_back(k.distributions.size());
+    voxel_size = k.voxel_size;
+  }
+  std::vector<Recorded> odometry;
+  std::vector<std::uint64_t> keyframe_ids;
+  std::vector<Eigen::Isometry3d> keyframe_poses;
+  std::vector<std::size_t> keyframe_sizes;
+  double voxel_size = 0;
+};
+
+std::vector<PointCloud> scans(int n) {
+  const PointCloud scene = litamin2::testing::synthetic_scene(1, 30000);
+  std::vector<PointCloud> out;
+  for (int i = 0; i < n; ++i) {
+    // The sensor moves 0.6 m forward per frame and turns slightly: the scene moves back.
+    Eigen::Isometry3d sensor = Eigen::Isometry3d::Identity();
+    sensor.translation() = Eigen::Vector3d(0.6 * i, 0.05 * i, 0.0);
+    sensor.linear() = Eigen::AngleAxisd(0.01 * i, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    out.push_back(litamin2::testing::transformed(scene, sensor.inverse()));
+  }
+  return out;
+}
+
+Frame frame_of(const PointCloud& cloud, std::uint64_t sequence) {
+  Frame f;
+  f.cloud = cloud;
+  f.sequence = sequence;
+  f.stamp = {static_cast<std::int32_t>(100 + sequence), 5000};
+  f.arrival = std::chrono::steady_clock::now();
+  return f;
+}
+
+}  // namespace
+
+TEST(StreamProcessor, PosesEqualThePlainTrackerBitForBit) {
+  const std::vector<PointCloud> input = scans(6);
+  StreamConfig config;
+  config.id = "car1";
+  RecordingSink sink;
+  StreamStats stats;
+  StreamProcessor processor(config, sink, stats);
+  Tracker reference(config.tracker);
+  for (std::size_t i = 0; i < input.size(); ++i) {
+    Frame f = frame_of(input[i], i);
+    processor.process(f);
+    const FrameResult expected = reference.process(input[i]);
+    ASSERT_EQ(sink.odometry.size(), i + 1);
+    const Recorded& r = sink.odometry.back();
+    EXPECT_EQ(r.stream, "car1");
+    EXPECT_EQ(r.sequence, i);
+    EXPECT_EQ(r.stamp.sec, static_cast<std::int32_t>(100 + i));
+    EXPECT_EQ(r.keyframe, expected.keyframe);
+    EXPECT_TRUE((r.pose.matrix().array() == expected.pose.matrix().array()).all()) << i;
+    EXPECT_TRUE((r.covariance.array() == expected.covariance.array()).all()) << i;
+  }
+  // The sensor moved 3 m: the first frame and at least one more are keyframes.
+  ASSERT_GE(sink.keyframe_ids.size(), 2u);
+  for (std::size_t k = 0; k < sink.keyframe_ids.size(); ++k) EXPECT_EQ(sink.keyframe_ids[k], k);
+  EXPECT_EQ(processor.keyframes(), sink.keyframe_ids.size());
+  for (std::size_t n : sink.keyframe_sizes) EXPECT_GT(n, 0u);
+  EXPECT_EQ(sink.voxel_size, config.tracker.voxelizer.voxel_size);
+  EXPECT_TRUE(
+      sink.odometry.back().pose.translation().isApprox(Eigen::Vector3d(3.0, 0.25, 0.0), 0.02));
+  const StatsSnapshot s = stats.snapshot();
+  EXPECT_EQ(s.frames_processed, 6u);
+  EXPECT_EQ(s.keyframes, sink.keyframe_ids.size());
+  EXPECT_GT(s.map_size, 0u);
+  EXPECT_GT(s.latency_p50_ms, 0.0);
+}
+
+TEST(StreamProcessor, ExtrinsicGivesTheBasePose) {
+  const std::vector<PointCloud> input = scans(3);
+  StreamConfig config;
+  config.id = "car2";
+  config.extrinsic.translation() = Eigen::Vector3d(1.5, 0.0, 1.8);
+  config.extrinsic.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  RecordingSink sink;
+  StreamStats stats;
+  StreamProcessor processor(config, sink, stats);
+  Tracker reference(config.tracker);
+  for (std::size_t i = 0; i < input.size(); ++i) {
+    Frame f = frame_of(input[i], i);
+    processor.process(f);
+    const FrameResult expected = reference.process(input[i]);
+    const Eigen::Isometry3d base = base_pose(expected.pose, config.extrinsic);
+    EXPECT_TRUE(sink.odometry.back().pose.isApprox(base, 1e-12));
+    EXPECT_TRUE(sink.odometry.back().covariance.isApprox(
+        base_covariance(expected.covariance, config.extrinsic), 1e-12));
+  }
+  // A keyframe's pose is the sensor's pose in the odometry frame.
+  EXPECT_TRUE(sink.keyframe_poses.front().isApprox(config.extrinsic, 1e-12));
+}
+
+TEST(StreamProcessor, BaseCovarianceIsTheAdjointTransform) {
+  Matrix6d c = Matrix6d::Zero();
+  c.diagonal() << 1, 2, 3, 4, 5, 6;
+  Eigen::Isometry3d e = Eigen::Isometry3d::Identity();
+  EXPECT_TRUE(base_covariance(c, e).isApprox(c));
+  e.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Matrix6d rotated = base_covariance(c, e);
+  // A quarter turn about z swaps the x and y variances of both blocks.
+  EXPECT_NEAR(rotated(0, 0), 2, 1e-12);
+  EXPECT_NEAR(rotated(1, 1), 1, 1e-12);
+  EXPECT_NEAR(rotated(3, 3), 5, 1e-12);
+  EXPECT_NEAR(rotated(4, 4), 4, 1e-12);
+  // A translated sensor: rotation uncertainty about the sensor moves the base.
+  e = Eigen::Isometry3d::Identity();
+  e.translation() = Eigen::Vector3d(2, 0, 0);
+  Matrix6d yaw_only = Matrix6d::Zero();
+  yaw_only(2, 2) = 0.01;
+  const Matrix6d moved = base_covariance(yaw_only, e);
+  EXPECT_NEAR(moved(4, 4), 0.04, 1e-12);  // y variance = (lever 2 m)^2 * 0.01
+}
