@@ -98,8 +98,17 @@ fdds::DomainParticipantQos participant_qos(const ParticipantConfig& config) {
     case TransportProfile::kXml:
       break;
     case TransportProfile::kShm: {
-      qos.transport().use_builtin_transports = true;
-      qos.transport().user_transports.push_back(shm_transport(config.shm_segment_bytes));
+      // Replaces the builtin transports (whose SHM segment is 512 KiB) by the same pair with
+      // a large segment; discovery stays Fast DDS's default (multicast).
+      auto& transport = qos.transport();
+      transport.use_builtin_transports = false;
+      auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
+      udp->sendBufferSize = config.socket_buffer_bytes;
+      udp->receiveBufferSize = config.socket_buffer_bytes;
+      transport.user_transports.push_back(shm_transport(config.shm_segment_bytes));
+      transport.user_transports.push_back(udp);
+      transport.send_socket_buffer_size = config.socket_buffer_bytes;
+      transport.listen_socket_buffer_size = config.socket_buffer_bytes;
       break;
     }
     case TransportProfile::kLoopback: {

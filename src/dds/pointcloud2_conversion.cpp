@@ -123,8 +123,6 @@ const char* to_string(CloudError error) {
       return "bad_field_type";
     case CloudError::kFieldOutOfBounds:
       return "field_out_of_bounds";
-    case CloudError::kBadPointStep:
-      return "bad_point_step";
     case CloudError::kBadRowStep:
       return "bad_row_step";
     case CloudError::kDataSizeMismatch:
@@ -202,9 +200,6 @@ CloudError from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
     }
   }
 
-  if (total > 0 && point_step == 0) {
-    return fail(out, CloudError::kBadPointStep, "point_step is 0");
-  }
   if (row_step < width * point_step) {
     return fail(out, CloudError::kBadRowStep,
                 "row_step " + std::to_string(row_step) + " < width " + std::to_string(width) +

@@ -21,8 +21,8 @@ enum class TransportProfile {
   /// whitelist) with large socket buffers; shared memory with a large segment; discovery by
   /// unicast to the initial peer 127.0.0.1 (no multicast locators at all). The default.
   kLoopback,
-  /// Shared memory with a large segment first, plus Fast DDS's default UDPv4 (all interfaces,
-  /// multicast discovery): for hosts that also talk to other hosts.
+  /// Shared memory with a large segment plus UDPv4 on all interfaces with large buffers (in place
+  /// of the builtin pair), default multicast discovery: for hosts that talk to other hosts.
   kShm,
   /// Fast DDS's builtin transports and discovery, untouched (SHM segment 512 KiB: slow for
   /// large scans, see DESIGN.md section 4).

@@ -21,10 +21,9 @@ enum class CloudError {
   /// x, y or z is not FLOAT32/FLOAT64, or intensity has a datatype code outside 1..8, or one
   /// of them has count 0.
   kBadFieldType,
-  /// A field of x, y, z, intensity does not fit in point_step (offset + size * count).
+  /// A field of x, y, z, intensity does not fit in point_step (offset + size * count); this
+  /// includes point_step 0.
   kFieldOutOfBounds,
-  /// point_step is 0 while the cloud has points.
-  kBadPointStep,
   /// row_step < width * point_step.
   kBadRowStep,
   /// data.size() != row_step * height (truncated or trailing bytes).
@@ -66,7 +65,7 @@ struct CloudConversion {
 ///  - x, y, z must each appear exactly once, FLOAT32 or FLOAT64, at any offset with
 ///    offset + size <= point_step (so fields may be interleaved with others in any order);
 ///  - "intensity" is optional, any numeric PointField datatype; other fields are ignored;
-///  - point_step > 0 when there are points, row_step >= width * point_step, and data.size()
+///  - row_step >= width * point_step, and data.size()
 ///    == row_step * height exactly (a truncated or padded buffer means the header is wrong);
 ///  - width * height == 0 is a valid empty cloud;
 ///  - is_bigendian: values are byte-swapped when the message's byte order differs from the

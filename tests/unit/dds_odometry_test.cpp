@@ -1,0 +1,127 @@
+/// Odometry conversion: pose, covariance reordering (left update -> ROS order) and back.
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "litamin2/core/so3.hpp"
+#include "litamin2/dds/odometry_conversion.hpp"
+#include "litamin2/dds/pose_conversion.hpp"
+
+namespace litamin2::dds {
+namespace {
+
+Eigen::Isometry3d some_pose() {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  pose.translation() = Eigen::Vector3d(10.0, -4.0, 2.5);
+  return pose;
+}
+
+Matrix6d random_covariance(unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> n(0.0, 1.0);
+  Matrix6d a;
+  for (int i = 0; i < 36; ++i) a(i / 6, i % 6) = n(rng);
+  return a * a.transpose() * 1e-3 + Matrix6d::Identity() * 1e-6;
+}
+
+TEST(DdsOdometry, PoseRoundTrip) {
+  const Eigen::Isometry3d pose = some_pose();
+  const Eigen::Isometry3d back = from_pose_msg(to_pose_msg(pose));
+  EXPECT_TRUE(back.isApprox(pose, 1e-12));
+  EXPECT_GE(to_pose_msg(pose).orientation().w(), 0.0);
+  geometry_msgs::msg::Pose zero;  // all zero: identity rotation, not NaN
+  zero.orientation().w(0.0);
+  EXPECT_TRUE(from_pose_msg(zero).linear().isApprox(Eigen::Matrix3d::Identity()));
+}
+
+TEST(DdsOdometry, AtOriginTheCovarianceBlocksAreSwapped) {
+  Matrix6d left = Matrix6d::Zero();
+  left.block<3, 3>(0, 0) = Eigen::Vector3d(1, 2, 3).asDiagonal();     // rotation (phi)
+  left.block<3, 3>(3, 3) = Eigen::Vector3d(10, 20, 30).asDiagonal();  // translation (tau)
+  left(0, 3) = left(3, 0) = 0.5;                                      // phi_x / tau_x
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = some_pose().linear();  // rotation does not matter, only the position
+  const auto ros = ros_pose_covariance(left, pose);
+  // Row-major, (x, y, z, rx, ry, rz).
+  EXPECT_DOUBLE_EQ(ros[0 * 6 + 0], 10.0);
+  EXPECT_DOUBLE_EQ(ros[1 * 6 + 1], 20.0);
+  EXPECT_DOUBLE_EQ(ros[2 * 6 + 2], 30.0);
+  EXPECT_DOUBLE_EQ(ros[3 * 6 + 3], 1.0);
+  EXPECT_DOUBLE_EQ(ros[4 * 6 + 4], 2.0);
+  EXPECT_DOUBLE_EQ(ros[5 * 6 + 5], 3.0);
+  EXPECT_DOUBLE_EQ(ros[0 * 6 + 3], 0.5);  // x / rx
+  EXPECT_DOUBLE_EQ(ros[3 * 6 + 0], 0.5);
+  EXPECT_DOUBLE_EQ(ros[1 * 6 + 3], 0.0);
+}
+
+TEST(DdsOdometry, CovarianceMatchesSampledPerturbations) {
+  // Perturb a pose by samples of the left update and compare the sample covariance of
+  // (position, fixed-axis rotation) with the converted covariance.
+  const Eigen::Isometry3d pose = some_pose();
+  const Matrix6d left = random_covariance(3) * 1e-3;
+  const Eigen::LLT<Matrix6d> llt(left);
+  const Matrix6d l = llt.matrixL();
+  std::mt19937 rng(5);
+  std::normal_distribution<double> n(0.0, 1.0);
+  const int samples = 200000;
+  Matrix6d sum = Matrix6d::Zero();
+  for (int s = 0; s < samples; ++s) {
+    Eigen::Matrix<double, 6, 1> z;
+    for (int i = 0; i < 6; ++i) z[i] = n(rng);
+    const Eigen::Matrix<double, 6, 1> xi = l * z;
+    const Eigen::Isometry3d moved = apply_left_update(xi, pose);
+    Eigen::Matrix<double, 6, 1> d;
+    d.head<3>() = moved.translation() - pose.translation();
+    const Eigen::AngleAxisd delta(moved.linear() * pose.linear().transpose());
+    d.tail<3>() = delta.angle() * delta.axis();
+    sum += d * d.transpose();
+  }
+  const Matrix6d sampled = sum / samples;
+  const auto ros = ros_pose_covariance(left, pose);
+  for (int r = 0; r < 6; ++r) {
+    for (int c = 0; c < 6; ++c) {
+      const double scale = std::sqrt(sampled(r, r) * sampled(c, c));
+      EXPECT_NEAR(ros[static_cast<std::size_t>(6 * r + c)], sampled(r, c), 0.03 * scale)
+          << r << "," << c;
+    }
+  }
+}
+
+TEST(DdsOdometry, CovarianceRoundTrip) {
+  const Eigen::Isometry3d pose = some_pose();
+  const Matrix6d left = random_covariance(9);
+  const Matrix6d back = left_covariance_from_ros(ros_pose_covariance(left, pose), pose);
+  EXPECT_TRUE(back.isApprox(left, 1e-12));
+}
+
+TEST(DdsOdometry, MessageRoundTrip) {
+  const Eigen::Isometry3d pose = some_pose();
+  const Matrix6d left = random_covariance(11);
+  const auto msg = to_odometry(pose, left, 1234.5, "car1/odom", "car1");
+  EXPECT_EQ(msg.header().frame_id(), "car1/odom");
+  EXPECT_EQ(msg.child_frame_id(), "car1");
+  EXPECT_EQ(msg.header().stamp().sec(), 1234);
+  EXPECT_EQ(msg.header().stamp().nanosec(), 500000000u);
+  EXPECT_DOUBLE_EQ(msg.pose().pose().position().x(), 10.0);
+  EXPECT_DOUBLE_EQ(msg.twist().covariance()[0], -1.0);
+  EXPECT_DOUBLE_EQ(msg.twist().covariance()[35], -1.0);
+  const OdometrySample sample = from_odometry(msg);
+  EXPECT_DOUBLE_EQ(sample.stamp, 1234.5);
+  EXPECT_EQ(sample.frame_id, "car1/odom");
+  EXPECT_EQ(sample.child_frame_id, "car1");
+  EXPECT_TRUE(sample.pose.isApprox(pose, 1e-12));
+  EXPECT_TRUE(sample.left_covariance.isApprox(left, 1e-9));
+  // ros_covariance is the message's array as a row-major matrix.
+  EXPECT_DOUBLE_EQ(sample.ros_covariance(0, 5), msg.pose().covariance()[5]);
+  EXPECT_DOUBLE_EQ(sample.ros_covariance(5, 0), msg.pose().covariance()[30]);
+}
+
+TEST(DdsOdometry, ZeroCovarianceStaysZero) {
+  const auto msg = to_odometry(some_pose(), Matrix6d::Zero(), 0.0, "odom", "base");
+  for (double v : msg.pose().covariance()) EXPECT_EQ(v, 0.0);
+}
+
+}  // namespace
+}  // namespace litamin2::dds
