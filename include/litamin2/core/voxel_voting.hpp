@@ -11,14 +11,17 @@
 
 #include <Eigen/Geometry>
 
+#include <utility>
+
 namespace litamin2 {
 
-/// Adds each point of `scan` whose range is within the config's limits, moved by `pose`, to
-/// the moments of its voxel. `moments_of(index)` returns the VoxelMoments of a voxel (creating
-/// it with its centre as origin); the reference is used before the next call only.
+/// Adds each point of [begin, end) whose range is within the config's limits, moved by `pose`,
+/// to the moments of its voxel. `moments_of(index)` returns the VoxelMoments of a voxel
+/// (creating it with its centre as origin); the reference is used before the next call only.
 template <class MomentsOf>
-void vote_points(const PointCloud& scan, const Eigen::Isometry3d& pose,
-                 const VoxelizerConfig& config, MomentsOf&& moments_of) {
+void vote_points(const Eigen::Vector3f* begin, const Eigen::Vector3f* end,
+                 const Eigen::Isometry3d& pose, const VoxelizerConfig& config,
+                 MomentsOf&& moments_of) {
   const double size = config.voxel_size;
   const double inv_size = 1.0 / size;
   const double min_range_sq = config.min_range * config.min_range;
@@ -31,8 +34,8 @@ void vote_points(const PointCloud& scan, const Eigen::Isometry3d& pose,
   auto flush = [&] {
     if (run.count > 0) moments_of(run_index).merge(run);
   };
-  for (const Eigen::Vector3f& pf : scan.points) {
-    const Eigen::Vector3d p = pf.cast<double>();
+  for (const Eigen::Vector3f* it = begin; it != end; ++it) {
+    const Eigen::Vector3d p = it->cast<double>();
     const double range_sq = p.squaredNorm();
     if (!(range_sq >= min_range_sq && range_sq <= max_range_sq)) continue;  // also drops NaN
     const Eigen::Vector3d world = rotation * p + translation;
@@ -46,6 +49,14 @@ void vote_points(const PointCloud& scan, const Eigen::Isometry3d& pose,
     run.add(world);
   }
   flush();
+}
+
+/// vote_points over a whole scan.
+template <class MomentsOf>
+void vote_points(const PointCloud& scan, const Eigen::Isometry3d& pose,
+                 const VoxelizerConfig& config, MomentsOf&& moments_of) {
+  const Eigen::Vector3f* data = scan.points.data();
+  vote_points(data, data + scan.points.size(), pose, config, std::forward<MomentsOf>(moments_of));
 }
 
 }  // namespace litamin2
