@@ -1,0 +1,228 @@
+// litamin2-replay: publishes KITTI-format scan sequences as ROS 2 PointCloud2 over DDS, several
+// streams at once (see --help and replay_options.cpp).
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <memory>
+#include <thread>
+#include <vector>
+
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+
+#include "litamin2/dds/participant_factory.hpp"
+#include "litamin2/dds/qos.hpp"
+#include "litamin2/dds/topic_names.hpp"
+#include "litamin2/io/io_error.hpp"
+#include "replay/replay_options.hpp"
+#include "replay/stream_publisher.hpp"
+#include "sensor_msgs/msg/PointCloud2PubSubTypes.h"
+
+namespace fdds = eprosima::fastdds::dds;
+using litamin2::replay::Clock;
+using litamin2::replay::ReplayOptions;
+using litamin2::replay::StreamPublisher;
+
+namespace {
+
+constexpr int kExitError = 1;
+constexpr int kExitNoSubscribers = 2;
+constexpr int kExitIncomplete = 3;
+constexpr int kExitInterrupted = 130;
+
+std::atomic<bool> g_stop{false};
+
+extern "C" void on_signal(int) {
+  g_stop.store(true);
+}
+
+std::string mb(std::uint64_t bytes) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.1f MB", static_cast<double>(bytes) / 1e6);
+  return buf;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  auto logger = spdlog::stderr_color_mt("litamin2-replay");
+  spdlog::set_default_logger(logger);
+  spdlog::set_pattern("[%H:%M:%S.%e] [%^%l%$] %v");
+
+  ReplayOptions options;
+  bool should_exit = false;
+  const int parse_status = litamin2::replay::parse_replay_options(argc, argv, options, should_exit);
+  if (should_exit) return parse_status;
+
+  // Open every sequence first: input errors are reported before any DDS traffic.
+  std::vector<std::unique_ptr<litamin2::io::ScanSequence>> sequences;
+  std::vector<std::pair<std::size_t, std::size_t>> ranges;
+  for (const auto& spec : options.streams) {
+    try {
+      sequences.push_back(std::make_unique<litamin2::io::ScanSequence>(spec.folder));
+    } catch (const std::exception& e) {
+      spdlog::error("stream {}: cannot open sequence '{}': {}", spec.id, spec.folder, e.what());
+      return kExitError;
+    }
+    const std::size_t n = sequences.back()->size();
+    if (options.first_frame >= n) {
+      spdlog::error("stream {}: --frames starts at {} but '{}' has {} scans", spec.id,
+                    options.first_frame, spec.folder, n);
+      return kExitError;
+    }
+    ranges.emplace_back(options.first_frame, std::min(options.last_frame, n));
+  }
+
+  std::string error;
+  litamin2::dds::ParticipantPtr participant =
+      litamin2::dds::create_participant(options.participant, &error);
+  if (!participant) {
+    spdlog::error("{}", error);
+    return kExitError;
+  }
+  fdds::TypeSupport type(new sensor_msgs::msg::PointCloud2PubSubType());
+  type.register_type(participant.get());
+  fdds::Publisher* publisher = participant->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
+  if (!publisher) {
+    spdlog::error("cannot create a DDS publisher");
+    return kExitError;
+  }
+  const auto blocking_ms = static_cast<std::int32_t>(std::min(options.timeout_s, 1e6) * 1000.0);
+  const fdds::DataWriterQos writer_qos =
+      litamin2::dds::points_writer_qos(options.best_effort, options.depth, blocking_ms);
+  std::vector<std::unique_ptr<StreamPublisher>> streams;
+  for (std::size_t s = 0; s < options.streams.size(); ++s) {
+    const auto& spec = options.streams[s];
+    const std::string topic_name = litamin2::dds::points_topic(spec.id);
+    fdds::Topic* topic =
+        participant->create_topic(topic_name, type.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
+    fdds::DataWriter* writer = topic ? publisher->create_datawriter(topic, writer_qos) : nullptr;
+    if (!writer) {
+      spdlog::error("stream {}: cannot create a DDS writer on {}", spec.id, topic_name);
+      return kExitError;
+    }
+    streams.push_back(std::make_unique<StreamPublisher>(spec.id, *sequences[s], ranges[s].first,
+                                                        ranges[s].second, writer));
+    spdlog::info("stream {}: {} frames [{}, {}) of {} on {} ({})", spec.id,
+                 ranges[s].second - ranges[s].first, ranges[s].first, ranges[s].second, spec.folder,
+                 topic_name, options.best_effort ? "best-effort" : "reliable keep-all");
+  }
+
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+
+  // Wait for readers, bounded.
+  const auto wait_deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                                std::chrono::duration<double>(options.timeout_s));
+  if (options.wait_subscribers > 0) {
+    spdlog::info("waiting up to {} s for {} reader(s) per stream (domain {}, profile {})",
+                 options.timeout_s, options.wait_subscribers, options.participant.domain_id,
+                 litamin2::dds::to_string(options.participant.transport));
+    while (!g_stop.load()) {
+      bool all = true;
+      for (const auto& stream : streams) {
+        all = all && stream->matched_readers() >= options.wait_subscribers;
+      }
+      if (all) break;
+      if (Clock::now() >= wait_deadline) {
+        for (const auto& stream : streams) {
+          spdlog::error("stream {}: {} of {} reader(s) matched on {} within {} s", stream->stream(),
+                        stream->matched_readers(), options.wait_subscribers,
+                        litamin2::dds::points_topic(stream->stream()), options.timeout_s);
+        }
+        spdlog::error(
+            "no subscribers: is the daemon running on domain {} with a compatible "
+            "profile? (--wait-subscribers 0 publishes without waiting)",
+            options.participant.domain_id);
+        return kExitNoSubscribers;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  }
+
+  // Publish: one thread per stream, one shared schedule.
+  const std::chrono::nanoseconds period =
+      options.max_rate ? std::chrono::nanoseconds(0)
+                       : std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / options.rate_hz));
+  const auto start = Clock::now() + std::chrono::milliseconds(10);
+  std::vector<std::thread> threads;
+  for (auto& stream : streams) {
+    threads.emplace_back([&stream, start, period] { stream->run(start, period, g_stop); });
+  }
+  std::size_t total_frames = 0;
+  for (const auto& stream : streams) total_frames += stream->frame_count();
+  std::atomic<bool> done{false};
+  std::thread progress([&] {
+    auto next = Clock::now() + std::chrono::seconds(2);
+    while (!done.load()) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      if (Clock::now() < next) continue;
+      next += std::chrono::seconds(2);
+      std::size_t published = 0;
+      for (const auto& stream : streams) published += stream->counters().published.load();
+      spdlog::info("published {}/{} frames ({:.1f} s)", published, total_frames,
+                   std::chrono::duration<double>(Clock::now() - start).count());
+    }
+  });
+  for (auto& t : threads) t.join();
+  done.store(true);
+  progress.join();
+  const double publish_s = std::chrono::duration<double>(Clock::now() - start).count();
+
+  // Reliable writers: wait until every reader has every sample.
+  bool acknowledged = true;
+  if (!options.best_effort && !g_stop.load()) {
+    for (auto& stream : streams) {
+      if (!stream->wait_for_acknowledgments(options.timeout_s)) {
+        spdlog::error("stream {}: not every reader acknowledged within {} s", stream->stream(),
+                      options.timeout_s);
+        acknowledged = false;
+      }
+    }
+  }
+
+  // Summary on stdout.
+  std::size_t published = 0;
+  std::size_t failed = 0;
+  std::uint64_t bytes = 0;
+  std::uint64_t points = 0;
+  bool stream_error = false;
+  for (const auto& stream : streams) {
+    const auto& c = stream->counters();
+    const double rate =
+        stream->elapsed_s() > 0 ? static_cast<double>(c.published) / stream->elapsed_s() : 0.0;
+    const double write_ms =
+        c.published + c.failed > 0
+            ? static_cast<double>(c.write_ns) / 1e6 / static_cast<double>(c.published + c.failed)
+            : 0.0;
+    std::printf(
+        "stream %s: %zu/%zu frames published, %zu failed, %.2f M points, %s in %.2f s: "
+        "%.2f frames/s, mean write %.2f ms%s\n",
+        stream->stream().c_str(), c.published.load(), stream->frame_count(), c.failed.load(),
+        static_cast<double>(c.points) / 1e6, mb(c.bytes).c_str(), stream->elapsed_s(), rate,
+        write_ms, stream->error().empty() ? "" : (" (stopped: " + stream->error() + ")").c_str());
+    published += c.published;
+    failed += c.failed;
+    bytes += c.bytes;
+    points += c.points;
+    stream_error = stream_error || !stream->error().empty();
+  }
+  std::printf(
+      "total: %zu streams, %zu/%zu frames, %zu failed, %.2f M points, %s in %.2f s: "
+      "%.1f frames/s, %.1f MB/s%s\n",
+      streams.size(), published, total_frames, failed, static_cast<double>(points) / 1e6,
+      mb(bytes).c_str(), publish_s, publish_s > 0 ? published / publish_s : 0.0,
+      publish_s > 0 ? static_cast<double>(bytes) / 1e6 / publish_s : 0.0,
+      options.best_effort ? "" : (acknowledged ? ", all acknowledged" : ", NOT all acknowledged"));
+  std::fflush(stdout);
+
+  if (g_stop.load()) return kExitInterrupted;
+  if (stream_error) return kExitError;
+  if (failed > 0 || published != total_frames || !acknowledged) return kExitIncomplete;
+  return 0;
+}

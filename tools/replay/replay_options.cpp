@@ -1,0 +1,131 @@
+#include "replay/replay_options.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <regex>
+
+#include "litamin2/dds/topic_names.hpp"
+
+namespace litamin2::replay {
+
+namespace {
+
+/// Parses "A:B", "A:" or ":B" (B exclusive).
+bool parse_frames(const std::string& text, std::size_t& first, std::size_t& last,
+                  std::string& error) {
+  static const std::regex re(R"(^\s*(\d*)\s*:\s*(\d*)\s*$)");
+  std::smatch m;
+  if (!std::regex_match(text, m, re)) {
+    error = "--frames must look like A:B (B exclusive), A: or :B, got '" + text + "'";
+    return false;
+  }
+  try {
+    first = m[1].length() ? std::stoull(m[1]) : 0;
+    last = m[2].length() ? std::stoull(m[2]) : static_cast<std::size_t>(-1);
+  } catch (const std::exception&) {
+    error = "--frames " + text + ": number out of range";
+    return false;
+  }
+  if (first >= last) {
+    error = "--frames " + text + " is empty";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& should_exit) {
+  should_exit = true;
+  CLI::App app{
+      "litamin2-replay: publishes KITTI-format scan sequences (a folder with velodyne/*.bin and "
+      "times.txt, or a plain folder of .bin/.pcd scans) as ROS 2 sensor_msgs/PointCloud2 on the "
+      "DDS topic rt/<stream>/points, one stream per SEQUENCE_DIR, all streams at once. Header "
+      "stamps come from times.txt, frame_id is the stream id.\n\n"
+      "Delivery: by default each writer is reliable keep-all (history --depth): when a reader is "
+      "slower than --rate, write() blocks until it has acknowledged, so no scan is lost (the "
+      "rate drops instead). --best-effort uses best-effort keep-last writers (scans may be lost, "
+      "the rate is kept). Before publishing, each writer waits for --wait-subscribers matched "
+      "readers; after the last frame, reliable writers wait for acknowledgments. Every wait is "
+      "bounded by --timeout.\n\n"
+      "Exit status: 0 all frames published (and acknowledged when reliable), 1 usage or input "
+      "error, 2 no subscribers within --timeout, 3 frames failed or not acknowledged, 130 "
+      "interrupted.",
+      "litamin2-replay"};
+  std::vector<std::string> stream_ids;
+  std::vector<std::string> folders;
+  std::string profile = "loopback";
+  std::string frames;
+  std::uint32_t domain = 0;
+  app.add_option("--stream,-s", stream_ids,
+                 "Stream id of each SEQUENCE_DIR, in order (ROS name rules: letters, digits, '_', "
+                 "'/' between tokens)")
+      ->required();
+  auto* rate =
+      app.add_option("--rate", options.rate_hz, "Frames per second per stream (default 10)");
+  auto* max = app.add_flag("--max", options.max_rate,
+                           "Publish as fast as the writers allow (reliable: as fast as the "
+                           "slowest reader acknowledges)");
+  rate->excludes(max);
+  app.add_option("--domain", domain, "DDS domain id (default 0)")->check(CLI::Range(0, 232));
+  app.add_option("--profile", profile,
+                 "Transport: loopback (default: 127.0.0.1 and shared memory only), shm, default, "
+                 "or FILE.xml[:PROFILE] (Fast DDS XML, participant profile name default "
+                 "'litamin2')");
+  app.add_option("--frames", frames, "Frames A:B of every sequence (B exclusive), A: or :B");
+  app.add_option("--wait-subscribers", options.wait_subscribers,
+                 "Matched readers each stream waits for before publishing (default 1, 0 = none)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--timeout", options.timeout_s,
+                 "Bound of each wait: readers, acknowledgments, a blocked write (s, default 30)")
+      ->check(CLI::PositiveNumber);
+  app.add_flag("--best-effort", options.best_effort,
+               "Best-effort keep-last writers (default: reliable keep-all)");
+  app.add_option("--depth", options.depth, "Writer history depth (default 10)")
+      ->check(CLI::Range(1, 10000));
+  app.add_option("SEQUENCE_DIR", folders, "Sequence folders, one per --stream")->required();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+
+  const auto fail = [](const std::string& message) {
+    spdlog::error("{}", message);
+    return 1;
+  };
+  if (stream_ids.size() != folders.size()) {
+    return fail("got " + std::to_string(stream_ids.size()) + " --stream id(s) for " +
+                std::to_string(folders.size()) +
+                " SEQUENCE_DIR(s): give one --stream per folder, in the same order");
+  }
+  for (std::size_t i = 0; i < stream_ids.size(); ++i) {
+    if (auto error = dds::stream_id_error(stream_ids[i])) {
+      return fail("--stream '" + stream_ids[i] + "': " + *error);
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      if (stream_ids[j] == stream_ids[i])
+        return fail("--stream '" + stream_ids[i] + "' given twice");
+    }
+    options.streams.push_back({stream_ids[i], folders[i]});
+  }
+  if (!options.max_rate && !(options.rate_hz > 0.0 && std::isfinite(options.rate_hz))) {
+    return fail("--rate must be a positive number of frames per second (or use --max)");
+  }
+  std::string error;
+  auto participant = dds::parse_participant_profile(profile, &error);
+  if (!participant) return fail("--profile: " + error);
+  options.participant = *participant;
+  options.participant.domain_id = domain;
+  options.participant.name = "litamin2-replay";
+  if (!frames.empty() && !parse_frames(frames, options.first_frame, options.last_frame, error)) {
+    return fail(error);
+  }
+  should_exit = false;
+  return 0;
+}
+
+}  // namespace litamin2::replay

@@ -1,0 +1,42 @@
+#pragma once
+/// Command line of litamin2-replay.
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "litamin2/dds/participant_factory.hpp"
+
+namespace litamin2::replay {
+
+/// One stream: a sequence folder published on rt/<id>/points.
+struct StreamSpec {
+  std::string id;
+  std::string folder;
+};
+
+struct ReplayOptions {
+  std::vector<StreamSpec> streams;
+  /// Frames per second per stream; 0 with `max_rate` = as fast as the writers allow.
+  double rate_hz = 10.0;
+  bool max_rate = false;
+  dds::ParticipantConfig participant;
+  /// Frames [first, last) of each sequence (last clamped to the sequence's size).
+  std::size_t first_frame = 0;
+  std::size_t last_frame = static_cast<std::size_t>(-1);
+  /// Readers each writer waits for before publishing (0: publish at once).
+  int wait_subscribers = 1;
+  /// Bound of every wait (readers, acknowledgments, a blocked write), seconds.
+  double timeout_s = 30.0;
+  /// Best-effort keep-last writers instead of reliable keep-all ones.
+  bool best_effort = false;
+  /// Writer history depth (keep-all: samples held until acknowledged).
+  int depth = 10;
+};
+
+/// Parses the command line. Returns 0 and fills `options` to run, or the process exit code
+/// when it should stop (0 for --help, 1 for an error, already reported on stderr).
+int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& should_exit);
+
+}  // namespace litamin2::replay

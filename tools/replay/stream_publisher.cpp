@@ -1,0 +1,77 @@
+#include "replay/stream_publisher.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <thread>
+
+#include <fastdds/dds/core/status/PublicationMatchedStatus.hpp>
+
+#include "litamin2/dds/pointcloud2_conversion.hpp"
+
+namespace litamin2::replay {
+
+StreamPublisher::StreamPublisher(std::string stream, const io::ScanSequence& sequence,
+                                 std::size_t first, std::size_t last,
+                                 eprosima::fastdds::dds::DataWriter* writer)
+    : stream_(std::move(stream)),
+      sequence_(sequence),
+      first_(first),
+      last_(last),
+      writer_(writer) {}
+
+int StreamPublisher::matched_readers() const {
+  eprosima::fastdds::dds::PublicationMatchedStatus status;
+  writer_->get_publication_matched_status(status);
+  return status.current_count;
+}
+
+void StreamPublisher::run(Clock::time_point start, std::chrono::nanoseconds period,
+                          const std::atomic<bool>& stop) {
+  for (std::size_t i = first_; i < last_ && !stop.load(); ++i) {
+    sensor_msgs::msg::PointCloud2 msg;
+    try {
+      const PointCloud cloud = sequence_.load(i);
+      msg = dds::to_pointcloud2(cloud, sequence_.timestamp(i), stream_);
+    } catch (const std::exception& e) {
+      error_ = "scan " + std::to_string(i) + " (" + sequence_.path(i) + "): " + e.what();
+      spdlog::error("{}: {}", stream_, error_);
+      break;
+    }
+    const auto slot = start + period * static_cast<std::int64_t>(i - first_);
+    // Sleep in short steps so that an interrupt is seen quickly.
+    while (!stop.load()) {
+      const auto now = Clock::now();
+      if (now >= slot) break;
+      std::this_thread::sleep_for(
+          std::min<Clock::duration>(slot - now, std::chrono::milliseconds(50)));
+    }
+    if (stop.load()) break;
+    const auto before = Clock::now();
+    const bool ok = writer_->write(&msg);
+    const auto after = Clock::now();
+    counters_.write_ns += static_cast<std::uint64_t>(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(after - before).count());
+    if (ok) {
+      counters_.published++;
+      counters_.points += msg.width() * msg.height();
+      counters_.bytes += msg.data().size();
+    } else {
+      counters_.failed++;
+      spdlog::warn(
+          "{}: write of frame {} failed (reliable history full: readers too slow, or "
+          "the writer was deleted)",
+          stream_, i);
+    }
+    elapsed_s_ = std::chrono::duration<double>(after - start).count();
+  }
+}
+
+bool StreamPublisher::wait_for_acknowledgments(double timeout_s) {
+  const double whole = std::floor(timeout_s);
+  const eprosima::fastrtps::Duration_t timeout(
+      static_cast<std::int32_t>(whole), static_cast<std::uint32_t>((timeout_s - whole) * 1e9));
+  return writer_->wait_for_acknowledgments(timeout) == ReturnCode_t::RETCODE_OK;
+}
+
+}  // namespace litamin2::replay

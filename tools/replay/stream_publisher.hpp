@@ -1,0 +1,65 @@
+#pragma once
+/// Publishes one scan sequence on rt/<stream>/points, paced by a shared schedule.
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+#include <fastdds/dds/publisher/DataWriter.hpp>
+
+#include "litamin2/io/kitti_sequence.hpp"
+
+namespace litamin2::replay {
+
+using Clock = std::chrono::steady_clock;
+
+/// Counters of one stream, readable from other threads while it runs.
+struct StreamCounters {
+  std::atomic<std::size_t> published{0};
+  std::atomic<std::size_t> failed{0};
+  std::atomic<std::uint64_t> points{0};
+  std::atomic<std::uint64_t> bytes{0};
+  /// Total time spent inside DataWriter::write (blocked on a full reliable history included).
+  std::atomic<std::uint64_t> write_ns{0};
+};
+
+class StreamPublisher {
+ public:
+  /// Publishes frames [first, last) of `sequence` with `writer` (not owned).
+  StreamPublisher(std::string stream, const io::ScanSequence& sequence, std::size_t first,
+                  std::size_t last, eprosima::fastdds::dds::DataWriter* writer);
+
+  const std::string& stream() const { return stream_; }
+  std::size_t frame_count() const { return last_ - first_; }
+  const StreamCounters& counters() const { return counters_; }
+  /// The first error that stopped the stream (a scan that could not be read), if any.
+  const std::string& error() const { return error_; }
+  /// Seconds from the schedule's start to the last write's end.
+  double elapsed_s() const { return elapsed_s_; }
+
+  /// Readers currently matched with the writer.
+  int matched_readers() const;
+
+  /// Publishes every frame: frame k (counting from `first`) is written at `start + k * period`
+  /// (period 0: at once); a late frame is written immediately, so the average rate is kept. A
+  /// scan is read and converted before its slot, so reading overlaps the wait. Stops early
+  /// when `stop` becomes true or a scan cannot be read. A write that fails (a reliable history
+  /// still full after the writer's max_blocking_time) is counted in `failed`.
+  void run(Clock::time_point start, std::chrono::nanoseconds period, const std::atomic<bool>& stop);
+
+  /// Waits until every reliable reader acknowledged all samples, at most `timeout_s`.
+  bool wait_for_acknowledgments(double timeout_s);
+
+ private:
+  std::string stream_;
+  const io::ScanSequence& sequence_;
+  std::size_t first_;
+  std::size_t last_;
+  eprosima::fastdds::dds::DataWriter* writer_;
+  StreamCounters counters_;
+  std::string error_;
+  double elapsed_s_ = 0.0;
+};
+
+}  // namespace litamin2::replay
