@@ -84,13 +84,27 @@ finish_subscriber paced
 check "paced: all scans identical" 0 $SUB_RC
 awk -v a="$T0" -v b="$T1" 'BEGIN { exit !(b - a >= 0.2) }' || { echo "FAIL: 20 Hz too fast"; FAIL=1; }
 
-# 3. Nobody listening: bounded wait, exit 2 with a clear message.
+# 3. Large scans (120001 points, 1.9 MB) on two streams at --max with a shallow writer history
+#    (--depth 2): the reliable writers must block or retry, never drop a scan.
+"$SUB" make-sequence "$WORK/big1" 20 120001 3 || exit 1
+"$SUB" make-sequence "$WORK/big2" 20 120001 4 || exit 1
+start_subscriber big big1="$WORK/big1" big2="$WORK/big2" || exit 1
+timeout 120 "$REPLAY" --stream big1 --stream big2 --max --depth 2 --domain "$DOMAIN" \
+  --timeout 30 "$WORK/big1" "$WORK/big2" >"$WORK/big.replay.log" 2>&1
+RC=$?
+grep -v "RTPS_TRANSPORT_SHM" "$WORK/big.replay.log"
+check "large scans: replay exit" 0 $RC
+finish_subscriber big
+check "large scans: all scans identical" 0 $SUB_RC
+rm -rf "$WORK/big1" "$WORK/big2"
+
+# 4. Nobody listening: bounded wait, exit 2 with a clear message.
 timeout 30 "$REPLAY" --stream car1 --domain "$DOMAIN" --timeout 1 "$WORK/a" \
   >"$WORK/nosub.log" 2>&1
 check "no subscribers: exit 2" 2 $?
 grep -q "0 of 1 reader(s) matched" "$WORK/nosub.log" || { echo "FAIL: no-subscriber message"; cat "$WORK/nosub.log"; FAIL=1; }
 
-# 4. Usage and input errors: exit 1 before any DDS traffic, --help exits 0.
+# 5. Usage and input errors: exit 1 before any DDS traffic, --help exits 0.
 "$REPLAY" --help >/dev/null 2>&1
 check "--help" 0 $?
 "$REPLAY" --stream car1 --stream car2 "$WORK/a" >/dev/null 2>&1

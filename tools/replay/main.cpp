@@ -152,7 +152,9 @@ int main(int argc, char** argv) {
   const auto start = Clock::now() + std::chrono::milliseconds(10);
   std::vector<std::thread> threads;
   for (auto& stream : streams) {
-    threads.emplace_back([&stream, start, period] { stream->run(start, period, g_stop); });
+    threads.emplace_back([&stream, start, period, &options] {
+      stream->run(start, period, g_stop, !options.best_effort, options.timeout_s);
+    });
   }
   std::size_t total_frames = 0;
   for (const auto& stream : streams) total_frames += stream->frame_count();
@@ -201,11 +203,12 @@ int main(int argc, char** argv) {
             ? static_cast<double>(c.write_ns) / 1e6 / static_cast<double>(c.published + c.failed)
             : 0.0;
     std::printf(
-        "stream %s: %zu/%zu frames published, %zu failed, %.2f M points, %s in %.2f s: "
-        "%.2f frames/s, mean write %.2f ms%s\n",
+        "stream %s: %zu/%zu frames published, %zu failed, %zu retried, %.2f M points, %s in "
+        "%.2f s: %.2f frames/s, mean write %.2f ms%s\n",
         stream->stream().c_str(), c.published.load(), stream->frame_count(), c.failed.load(),
-        static_cast<double>(c.points) / 1e6, mb(c.bytes).c_str(), stream->elapsed_s(), rate,
-        write_ms, stream->error().empty() ? "" : (" (stopped: " + stream->error() + ")").c_str());
+        c.retried.load(), static_cast<double>(c.points) / 1e6, mb(c.bytes).c_str(),
+        stream->elapsed_s(), rate, write_ms,
+        stream->error().empty() ? "" : (" (stopped: " + stream->error() + ")").c_str());
     published += c.published;
     failed += c.failed;
     bytes += c.bytes;

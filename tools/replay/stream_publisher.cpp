@@ -27,7 +27,7 @@ int StreamPublisher::matched_readers() const {
 }
 
 void StreamPublisher::run(Clock::time_point start, std::chrono::nanoseconds period,
-                          const std::atomic<bool>& stop) {
+                          const std::atomic<bool>& stop, bool reliable, double timeout_s) {
   for (std::size_t i = first_; i < last_ && !stop.load(); ++i) {
     sensor_msgs::msg::PointCloud2 msg;
     try {
@@ -48,7 +48,12 @@ void StreamPublisher::run(Clock::time_point start, std::chrono::nanoseconds peri
     }
     if (stop.load()) break;
     const auto before = Clock::now();
-    const bool ok = writer_->write(&msg);
+    bool ok = writer_->write(&msg);
+    if (!ok && reliable && !stop.load()) {
+      counters_.retried++;
+      wait_for_acknowledgments(timeout_s);
+      ok = writer_->write(&msg);
+    }
     const auto after = Clock::now();
     counters_.write_ns += static_cast<std::uint64_t>(
         std::chrono::duration_cast<std::chrono::nanoseconds>(after - before).count());

@@ -18,6 +18,8 @@ using Clock = std::chrono::steady_clock;
 struct StreamCounters {
   std::atomic<std::size_t> published{0};
   std::atomic<std::size_t> failed{0};
+  /// Writes retried after waiting for acknowledgments (see run()).
+  std::atomic<std::size_t> retried{0};
   std::atomic<std::uint64_t> points{0};
   std::atomic<std::uint64_t> bytes{0};
   /// Total time spent inside DataWriter::write (blocked on a full reliable history included).
@@ -44,9 +46,14 @@ class StreamPublisher {
   /// Publishes every frame: frame k (counting from `first`) is written at `start + k * period`
   /// (period 0: at once); a late frame is written immediately, so the average rate is kept. A
   /// scan is read and converted before its slot, so reading overlaps the wait. Stops early
-  /// when `stop` becomes true or a scan cannot be read. A write that fails (a reliable history
-  /// still full after the writer's max_blocking_time) is counted in `failed`.
-  void run(Clock::time_point start, std::chrono::nanoseconds period, const std::atomic<bool>& stop);
+  /// when `stop` becomes true or a scan cannot be read.
+  /// With `reliable`, a write that fails is retried once after waiting (at most `timeout_s`)
+  /// until the readers acknowledged every sample: Fast DDS 2.9's keep-all writer sometimes
+  /// fails write() on a full history at once instead of blocking for max_blocking_time
+  /// ("Attempting to add Data to Full WriterCache", seen with three 2.5 MB streams at --max).
+  /// A write that still fails is counted in `failed`.
+  void run(Clock::time_point start, std::chrono::nanoseconds period, const std::atomic<bool>& stop,
+           bool reliable, double timeout_s);
 
   /// Waits until every reliable reader acknowledged all samples, at most `timeout_s`.
   bool wait_for_acknowledgments(double timeout_s);
