@@ -1,0 +1,87 @@
+#pragma once
+/// The daemon's DDS side: one participant; per stream a reader of rt/<stream>/points (created
+/// when discovery reports a writer, reliable if the writer is), a tracker on the shared
+/// StreamScheduler, and a writer of rt/<stream>/odom; one writer each for map patches and
+/// status. Streams come from the config and, with discovery enabled, from every PointCloud2
+/// topic matching the pattern. The main loop calls poll(); shutdown() stops input, drains the
+/// queues within the configured time and publishes a final status.
+
+#include "litamin2/daemon/daemon_config.hpp"
+#include "litamin2/daemon/dds/publisher_discovery.hpp"
+#include "litamin2/daemon/stream_scheduler.hpp"
+#include "litamin2/dds/participant_factory.hpp"
+#include "litamin2/dds/topic_names.hpp"
+
+#include <fastdds/dds/topic/TypeSupport.hpp>
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace eprosima::fastdds::dds {
+class Publisher;
+class Subscriber;
+class Topic;
+class DataWriter;
+}  // namespace eprosima::fastdds::dds
+
+namespace litamin2::daemon {
+
+class DaemonNode {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  /// Creates the participant, the output writers, the scheduler and the configured streams'
+  /// trackers. Throws std::runtime_error if DDS refuses (bad XML profile, ...) and ConfigError
+  /// for an invalid tracker config.
+  explicit DaemonNode(DaemonConfig config);
+  /// Shuts down (if not done) and deletes every DDS entity.
+  ~DaemonNode();
+  DaemonNode(const DaemonNode&) = delete;
+  DaemonNode& operator=(const DaemonNode&) = delete;
+
+  /// Main-loop work: readers (and trackers) for newly discovered writers, status when due.
+  void poll(Clock::time_point now = Clock::now());
+  /// No frame has been in processing for longer than the watchdog's stall timeout.
+  bool healthy(Clock::time_point now = Clock::now()) const;
+  /// Stops reading, gives queued frames up to shutdown_timeout_s, publishes the last status.
+  /// Idempotent.
+  DrainResult shutdown();
+
+  std::size_t stream_count() const { return streams_.size(); }
+  /// One line for logs and sd_notify STATUS=.
+  std::string summary(Clock::time_point now = Clock::now()) const;
+
+ private:
+  struct Stream;
+
+  Stream& add_stream(StreamConfig config);
+  Stream* find_by_topic(const std::string& topic);
+  void on_writer(const DiscoveredWriter& writer);
+  void attach_reader(Stream& stream, bool reliable);
+  void detach_reader(Stream& stream);
+  void publish_status(Clock::time_point now);
+
+  DaemonConfig config_;
+  std::optional<dds::TopicPattern> pattern_;
+  std::unique_ptr<PublisherDiscovery> discovery_;
+  dds::ParticipantPtr participant_;
+  eprosima::fastdds::dds::TypeSupport points_type_;
+  eprosima::fastdds::dds::TypeSupport odom_type_;
+  eprosima::fastdds::dds::TypeSupport map_patch_type_;
+  eprosima::fastdds::dds::TypeSupport status_type_;
+  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
+  eprosima::fastdds::dds::DataWriter* map_patch_writer_ = nullptr;
+  eprosima::fastdds::dds::DataWriter* status_writer_ = nullptr;
+  std::unique_ptr<StreamScheduler> scheduler_;
+  std::vector<std::unique_ptr<Stream>> streams_;
+  Clock::time_point next_status_{};
+  std::map<std::string, std::pair<std::uint64_t, std::uint64_t>> reported_losses_;
+  bool stopped_ = false;
+};
+
+}  // namespace litamin2::daemon

@@ -1,0 +1,296 @@
+#include "litamin2/daemon/dds/daemon_node.hpp"
+
+#include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
+#include "litamin2/daemon/dds/dds_stream_sink.hpp"
+#include "litamin2/daemon/dds/points_listener.hpp"
+#include "litamin2/daemon/dds/status_message.hpp"
+#include "litamin2/daemon/stream_processor.hpp"
+#include "litamin2/dds/qos.hpp"
+#include "litamin2/msg/MapPatchPubSubTypes.h"
+#include "nav_msgs/msg/OdometryPubSubTypes.h"
+#include "sensor_msgs/msg/PointCloud2PubSubTypes.h"
+
+#include <spdlog/spdlog.h>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+
+#include <stdexcept>
+
+namespace litamin2::daemon {
+
+namespace fdds = eprosima::fastdds::dds;
+
+struct DaemonNode::Stream {
+  StreamConfig config;
+  StreamStats stats;
+  fdds::Topic* points_topic = nullptr;
+  fdds::DataWriter* odom_writer = nullptr;
+  std::unique_ptr<DdsStreamSink> sink;
+  std::unique_ptr<StreamProcessor> processor;
+  StreamScheduler::Handle handle = 0;
+  std::unique_ptr<PointsListener> listener;
+  fdds::DataReader* reader = nullptr;
+  bool reliable = false;
+  std::uint64_t reported_dropped = 0;
+  std::uint64_t reported_bad = 0;
+};
+
+namespace {
+
+dds::ParticipantConfig participant_config(const DaemonConfig& config) {
+  dds::ParticipantConfig pc;
+  pc.domain_id = static_cast<std::uint32_t>(config.dds.domain);
+  pc.name = "litamin2d";
+  switch (config.dds.profile) {
+    case TransportProfile::loopback:
+      pc.transport = dds::TransportProfile::kLoopback;
+      break;
+    case TransportProfile::shm:
+      pc.transport = dds::TransportProfile::kShm;
+      break;
+    case TransportProfile::default_profile:
+      pc.transport = dds::TransportProfile::kDefault;
+      break;
+    case TransportProfile::xml:
+      pc.transport = dds::TransportProfile::kXml;
+      pc.xml_file = config.dds.xml_file;
+      pc.xml_profile = config.dds.xml_profile;
+      break;
+  }
+  return pc;
+}
+
+fdds::TypeSupport registered(fdds::DomainParticipant* participant, fdds::TopicDataType* type) {
+  fdds::TypeSupport support(type);
+  if (support.register_type(participant) != ReturnCode_t::RETCODE_OK)
+    throw std::runtime_error("cannot register DDS type " + support.get_type_name());
+  return support;
+}
+
+double wall_seconds() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+DaemonNode::DaemonNode(DaemonConfig config) : config_(std::move(config)) {
+  if (config_.discovery.enabled) {
+    std::string error;
+    pattern_ = dds::TopicPattern::parse(config_.discovery.pattern, &error);
+    if (!pattern_) throw ConfigError("discovery.pattern: " + error);
+  }
+  // Trackers of configured streams are built first: an invalid config fails before DDS starts.
+  scheduler_ = std::make_unique<StreamScheduler>(config_.threads,
+                                                 static_cast<std::size_t>(config_.queue_depth));
+  scheduler_->set_error_handler([](const std::string& stream, const std::string& what) {
+    spdlog::error("stream {}: frame failed: {}", stream, what);
+  });
+
+  sensor_msgs::msg::PointCloud2PubSubType points_type_probe;
+  discovery_ = std::make_unique<PublisherDiscovery>(points_type_probe.getName());
+  std::string error;
+  participant_ = dds::create_participant(participant_config(config_), &error, discovery_.get(),
+                                         fdds::StatusMask::none());
+  if (!participant_) throw std::runtime_error("cannot create the DDS participant: " + error);
+
+  points_type_ = registered(participant_.get(), new sensor_msgs::msg::PointCloud2PubSubType());
+  odom_type_ = registered(participant_.get(), new nav_msgs::msg::OdometryPubSubType());
+  map_patch_type_ = registered(participant_.get(), new litamin2::msg::MapPatchPubSubType());
+  status_type_ =
+      registered(participant_.get(), new diagnostic_msgs::msg::DiagnosticArrayPubSubType());
+
+  subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
+  publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
+  if (!subscriber_ || !publisher_) throw std::runtime_error("cannot create publisher/subscriber");
+
+  auto* patches_topic = participant_->create_topic(
+      config_.outputs.map_patches_topic, map_patch_type_.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
+  auto* status_topic = participant_->create_topic(
+      config_.outputs.status_topic, status_type_.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
+  if (!patches_topic || !status_topic) throw std::runtime_error("cannot create output topics");
+  map_patch_writer_ = publisher_->create_datawriter(patches_topic, dds::map_patches_writer_qos());
+  status_writer_ = publisher_->create_datawriter(status_topic, dds::status_writer_qos());
+  if (!map_patch_writer_ || !status_writer_)
+    throw std::runtime_error("cannot create output writers");
+
+  for (const StreamConfig& stream : config_.streams) add_stream(stream);
+  next_status_ = Clock::now();
+  spdlog::info("DDS participant up: domain {}, profile {}, {} configured stream(s){}",
+               config_.dds.domain, to_string(config_.dds.profile), config_.streams.size(),
+               pattern_ ? ", discovering " + pattern_->str() : std::string());
+}
+
+DaemonNode::~DaemonNode() {
+  shutdown();
+  scheduler_.reset();
+  participant_.reset();  // deletes readers, writers and topics
+  streams_.clear();
+  discovery_.reset();
+}
+
+DaemonNode::Stream& DaemonNode::add_stream(StreamConfig config) {
+  auto stream = std::make_unique<Stream>();
+  stream->config = std::move(config);
+  Stream& s = *stream;
+  const std::string odom_topic_name = "rt/" + s.config.id + "/" + config_.outputs.odom_suffix;
+  s.points_topic = participant_->create_topic(s.config.topic, points_type_.get_type_name(),
+                                              fdds::TOPIC_QOS_DEFAULT);
+  auto* odom_topic = participant_->create_topic(odom_topic_name, odom_type_.get_type_name(),
+                                                fdds::TOPIC_QOS_DEFAULT);
+  if (!s.points_topic || !odom_topic)
+    throw std::runtime_error("stream " + s.config.id + ": cannot create its topics");
+  s.odom_writer = publisher_->create_datawriter(odom_topic, dds::odom_writer_qos());
+  if (!s.odom_writer) throw std::runtime_error("stream " + s.config.id + ": no odom writer");
+  s.sink = std::make_unique<DdsStreamSink>(s.odom_writer, map_patch_writer_,
+                                           s.config.id + "/" + config_.outputs.odom_frame,
+                                           s.config.id + "/base_link");
+  s.processor = std::make_unique<StreamProcessor>(s.config, *s.sink, s.stats);
+  StreamProcessor* processor = s.processor.get();
+  s.handle = scheduler_->add_stream(s.config.id, [processor](Frame& f) { processor->process(f); });
+  s.listener = std::make_unique<PointsListener>(s.config.id, *scheduler_, s.handle, s.stats);
+  spdlog::info("stream {}: {} -> {}", s.config.id, s.config.topic, odom_topic_name);
+  streams_.push_back(std::move(stream));
+  return s;
+}
+
+DaemonNode::Stream* DaemonNode::find_by_topic(const std::string& topic) {
+  for (auto& s : streams_)
+    if (s->config.topic == topic) return s.get();
+  return nullptr;
+}
+
+void DaemonNode::attach_reader(Stream& s, bool reliable) {
+  s.reader = subscriber_->create_datareader(
+      s.points_topic, dds::points_reader_qos(reliable), s.listener.get(),
+      fdds::StatusMask::data_available()
+          << fdds::StatusMask::subscription_matched() << fdds::StatusMask::sample_lost());
+  if (!s.reader) {
+    spdlog::error("stream {}: cannot create a reader of {}", s.config.id, s.config.topic);
+    return;
+  }
+  s.reliable = reliable;
+  spdlog::info("stream {}: reading {} ({})", s.config.id, s.config.topic,
+               reliable ? "reliable" : "best effort");
+}
+
+void DaemonNode::detach_reader(Stream& s) {
+  if (!s.reader) return;
+  s.reader->set_listener(nullptr);
+  subscriber_->delete_datareader(s.reader);
+  s.reader = nullptr;
+}
+
+void DaemonNode::on_writer(const DiscoveredWriter& writer) {
+  Stream* s = find_by_topic(writer.topic);
+  if (!s) {
+    if (!pattern_) return;
+    const std::optional<std::string> id = pattern_->match(writer.topic);
+    if (!id) {
+      spdlog::debug("ignoring {}: does not match {}", writer.topic, pattern_->str());
+      return;
+    }
+    if (streams_.size() >= static_cast<std::size_t>(config_.discovery.max_streams)) {
+      spdlog::warn("ignoring {}: discovery.max_streams ({}) reached", writer.topic,
+                   config_.discovery.max_streams);
+      return;
+    }
+    for (const auto& other : streams_)
+      if (other->config.id == *id) {
+        spdlog::warn("ignoring {}: stream id {} is taken by {}", writer.topic, *id,
+                     other->config.topic);
+        return;
+      }
+    s = &add_stream(discovered_stream(config_, *id, writer.topic));
+  }
+  if (!s->reader) {
+    attach_reader(*s, writer.reliable);
+  } else if (s->reliable && !writer.reliable) {
+    // A reliable reader does not match a best-effort writer: read everything best-effort.
+    spdlog::warn("stream {}: a best-effort publisher appeared; reading best-effort", s->config.id);
+    detach_reader(*s);
+    attach_reader(*s, false);
+  }
+}
+
+void DaemonNode::poll(Clock::time_point now) {
+  if (stopped_) return;
+  for (const DiscoveredWriter& writer : discovery_->take()) {
+    try {
+      on_writer(writer);
+    } catch (const std::exception& e) {
+      spdlog::error("cannot start a stream for {}: {}", writer.topic, e.what());
+    }
+  }
+  if (now >= next_status_) {
+    publish_status(now);
+    next_status_ = now + std::chrono::duration_cast<Clock::duration>(
+                             std::chrono::duration<double>(config_.outputs.status_period_s));
+  }
+}
+
+bool DaemonNode::healthy(Clock::time_point now) const {
+  if (!config_.watchdog.enabled) return true;
+  return scheduler_->longest_in_flight(now) <
+         std::chrono::duration<double>(config_.watchdog.stall_timeout_s);
+}
+
+void DaemonNode::publish_status(Clock::time_point now) {
+  std::vector<StreamStatus> statuses;
+  const bool stalled = !healthy(now);
+  for (auto& s : streams_) {
+    StreamStatus st;
+    st.id = s->config.id;
+    st.topic = s->config.topic;
+    st.stats = s->stats.snapshot(now);
+    st.counters = scheduler_->counters(s->handle);
+    st.reading = s->reader != nullptr;
+    st.reliable = s->reliable;
+    st.samples_lost = s->listener->samples_lost();
+    if (stalled) {
+      st.level = 2;
+      st.message = "processing stalled";
+    } else if (st.counters.dropped > s->reported_dropped) {
+      st.level = 1;
+      st.message = "falling behind: frames dropped";
+    } else if (st.stats.bad_messages > s->reported_bad) {
+      st.level = 1;
+      st.message = "bad messages received";
+    }
+    s->reported_dropped = st.counters.dropped;
+    s->reported_bad = st.stats.bad_messages;
+    statuses.push_back(std::move(st));
+  }
+  auto msg = make_status_message(statuses, wall_seconds());
+  status_writer_->write(&msg);
+}
+
+std::string DaemonNode::summary(Clock::time_point now) const {
+  double fps = 0.0;
+  std::uint64_t dropped = 0, bad = 0;
+  for (const auto& s : streams_) {
+    const StatsSnapshot snapshot = s->stats.snapshot(now);
+    fps += snapshot.frames_per_second;
+    bad += snapshot.bad_messages;
+    dropped += scheduler_->counters(s->handle).dropped;
+  }
+  return fmt::format("{} stream(s), {:.1f} frames/s, {} dropped, {} bad messages", streams_.size(),
+                     fps, dropped, bad);
+}
+
+DrainResult DaemonNode::shutdown() {
+  if (stopped_) return {true, 0, 0};
+  stopped_ = true;
+  for (auto& s : streams_) detach_reader(*s);
+  const DrainResult result = scheduler_->drain(
+      std::chrono::milliseconds(static_cast<std::int64_t>(config_.shutdown_timeout_s * 1000.0)));
+  publish_status(Clock::now());
+  spdlog::info("shut down: {} queued frame(s) dropped{}; {}", result.dropped,
+               result.complete ? "" : fmt::format(", {} still in processing", result.in_flight),
+               summary());
+  return result;
+}
+
+}  // namespace litamin2::daemon

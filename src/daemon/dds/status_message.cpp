@@ -1,0 +1,60 @@
+#include "litamin2/daemon/dds/status_message.hpp"
+
+#include "litamin2/dds/time_conversion.hpp"
+
+#include <cstdio>
+
+namespace litamin2::daemon {
+namespace {
+
+diagnostic_msgs::msg::KeyValue key_value(const char* key, const std::string& value) {
+  diagnostic_msgs::msg::KeyValue kv;
+  kv.key(key);
+  kv.value(value);
+  return kv;
+}
+
+std::string number(double value, int decimals) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
+  return buffer;
+}
+
+}  // namespace
+
+diagnostic_msgs::msg::DiagnosticArray make_status_message(const std::vector<StreamStatus>& streams,
+                                                          double stamp_seconds) {
+  diagnostic_msgs::msg::DiagnosticArray array;
+  array.header().stamp(dds::to_time(stamp_seconds));
+  array.header().frame_id("");
+  for (const StreamStatus& s : streams) {
+    diagnostic_msgs::msg::DiagnosticStatus status;
+    status.level(s.level);
+    status.name("litamin2d: " + s.id);
+    status.message(s.message);
+    status.hardware_id(s.id);
+    auto& v = status.values();
+    v.push_back(key_value("topic", s.topic));
+    v.push_back(key_value("reader", !s.reading   ? "waiting for a publisher"
+                                    : s.reliable ? "reliable"
+                                                 : "best_effort"));
+    v.push_back(key_value("frames_per_second", number(s.stats.frames_per_second, 2)));
+    v.push_back(key_value("latency_p50_ms", number(s.stats.latency_p50_ms, 3)));
+    v.push_back(key_value("latency_p99_ms", number(s.stats.latency_p99_ms, 3)));
+    v.push_back(key_value("latency_max_ms", number(s.stats.latency_max_ms, 3)));
+    v.push_back(key_value("frames_received", std::to_string(s.stats.frames_received)));
+    v.push_back(key_value("frames_processed", std::to_string(s.stats.frames_processed)));
+    v.push_back(key_value("frames_dropped", std::to_string(s.counters.dropped)));
+    v.push_back(key_value("frames_failed", std::to_string(s.counters.failed)));
+    v.push_back(key_value("frames_queued", std::to_string(s.counters.queued)));
+    v.push_back(key_value("frames_unregistered", std::to_string(s.stats.frames_unregistered)));
+    v.push_back(key_value("bad_messages", std::to_string(s.stats.bad_messages)));
+    v.push_back(key_value("samples_lost", std::to_string(s.samples_lost)));
+    v.push_back(key_value("keyframes", std::to_string(s.stats.keyframes)));
+    v.push_back(key_value("map_size", std::to_string(s.stats.map_size)));
+    array.status().push_back(std::move(status));
+  }
+  return array;
+}
+
+}  // namespace litamin2::daemon

@@ -1,0 +1,24 @@
+# litamin2d end to end over real DDS, inside a private network namespace (unshare -n, only lo
+# up) and with the loopback-only transport profile: nothing can leave the machine.
+#  - integration_daemon_replay: simulated scans -> litamin2-replay -> litamin2d -> daemon_probe;
+#    every frame of two parallel streams gets one odometry message whose pose is bit-identical
+#    to litamin2-odometry's; status reports no drop; SIGTERM exits 0 within 2 s; then the
+#    shipped config's discovery (on another domain) starts a stream for a new publisher.
+#  - integration_daemon_lifecycle: --help/--version/--check-config, config errors, sd_notify
+#    READY/WATCHDOG/STOPPING on a fake NOTIFY_SOCKET, SIGTERM/SIGINT exit 0 within 2 s.
+if(TARGET litamin2d)
+  add_executable(daemon_probe ${CMAKE_CURRENT_LIST_DIR}/daemon_probe/main.cpp)
+  target_link_libraries(daemon_probe PRIVATE litamin2_dds litamin2_io CLI11::CLI11)
+
+  add_test(NAME integration_daemon_lifecycle
+    COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/daemon_lifecycle.sh ${CMAKE_BINARY_DIR}
+      ${CMAKE_CURRENT_BINARY_DIR}/daemon_lifecycle ${CMAKE_SOURCE_DIR})
+  set_tests_properties(integration_daemon_lifecycle PROPERTIES TIMEOUT 120 RUN_SERIAL TRUE)
+
+  if(TARGET litamin2-replay AND TARGET litamin2-sim AND TARGET litamin2-odometry)
+    add_test(NAME integration_daemon_replay
+      COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/daemon_replay.sh ${CMAKE_BINARY_DIR}
+        ${CMAKE_CURRENT_BINARY_DIR}/daemon_replay ${CMAKE_SOURCE_DIR})
+    set_tests_properties(integration_daemon_replay PROPERTIES TIMEOUT 600 RUN_SERIAL TRUE)
+  endif()
+endif()

@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# litamin2d's command line, config errors, sd_notify protocol and signal handling, in a private
+# network namespace. Usage: daemon_lifecycle.sh BUILD_DIR WORK_DIR SOURCE_DIR
+set -euo pipefail
+source "$(dirname "$0")/daemon_netns.sh"
+here=$(cd "$(dirname "$0")" && pwd)
+build=$1
+work=$2
+source_dir=$3
+daemon=$build/tools/litamin2d/litamin2d
+rm -rf "$work"
+mkdir -p "$work"
+cd "$work"
+fail() { echo "FAIL: $*"; exit 1; }
+
+echo "== command line"
+"$daemon" --help | grep -q -- "--check-config" || fail "--help"
+"$daemon" --version | grep -q "^litamin2d " || fail "--version"
+"$daemon" --check-config --config "$source_dir/config/litamin2d.yaml" | grep -q ": ok" ||
+  fail "shipped config does not check"
+printf 'discovery: {enabled: true}\nqueue_depth: 0\n' > bad.yaml
+status=0
+"$daemon" --check-config --config bad.yaml 2> bad.err || status=$?
+[ "$status" -eq 2 ] || fail "bad config: exit $status, expected 2"
+grep -q "bad.yaml: queue_depth: 0 is out of range" bad.err || fail "message: $(cat bad.err)"
+status=0
+"$daemon" --config /nonexistent.yaml 2> missing.err || status=$?
+[ "$status" -eq 2 ] || fail "missing config: exit $status"
+
+cat > daemon.yaml <<YAML
+dds: {domain: 23, profile: loopback}
+discovery: {enabled: true, pattern: "rt/*/points"}
+threads: 1
+outputs: {status_period_s: 0.2}
+log_level: debug
+YAML
+
+# Runs the daemon with a fake NOTIFY_SOCKET and WatchdogSec=0.4 s, stops it with signal $1 after
+# $2 seconds, and checks the notifications and the exit.
+run_with_signal() {
+  local signal=$1 seconds=$2 socket="$work/notify_$1.sock"
+  rm -f "$socket" "notify_$1.log"
+  python3 "$here/daemon_notify_listener.py" "$socket" "notify_$1.log" 30 &
+  local listener=$!
+  for _ in $(seq 1 100); do [ -S "$socket" ] && break; sleep 0.05; done
+  NOTIFY_SOCKET=$socket WATCHDOG_USEC=400000 "$daemon" --config daemon.yaml > "daemon_$1.log" 2>&1 &
+  local pid=$!
+  sleep "$seconds"
+  kill -0 $pid || { cat "daemon_$1.log"; fail "daemon died early"; }
+  local t0 t1 status=0
+  t0=$(date +%s%N)
+  kill -"$signal" $pid
+  for _ in $(seq 1 50); do kill -0 $pid 2>/dev/null || break; sleep 0.05; done
+  kill -0 $pid 2>/dev/null && { kill -9 $pid; cat "daemon_$1.log"; fail "still running 2.5 s after SIG$signal"; }
+  wait $pid || status=$?
+  t1=$(date +%s%N)
+  wait $listener || true
+  echo "SIG$signal: exit $status after $(( (t1 - t0) / 1000000 )) ms"
+  cat "notify_$1.log"
+  [ "$status" -eq 0 ] || { cat "daemon_$1.log"; fail "exit status $status"; }
+  [ $(( (t1 - t0) / 1000000 )) -lt 2000 ] || fail "took too long"
+  grep -q " READY=1$" "notify_$1.log" || fail "no READY=1"
+  grep -q " STOPPING=1$" "notify_$1.log" || fail "no STOPPING=1"
+  grep -q " STATUS=" "notify_$1.log" || fail "no STATUS="
+  local pings
+  pings=$(grep -c " WATCHDOG=1$" "notify_$1.log" || true)
+  # One ping at start, then one every 0.2 s.
+  [ "$pings" -ge $(( ${seconds%.*} * 4 )) ] || fail "only $pings WATCHDOG=1 in ${seconds} s"
+  # READY comes before the first WATCHDOG, STOPPING last.
+  [ "$(grep -m1 -E 'READY|WATCHDOG' "notify_$1.log" | cut -d' ' -f2)" = "READY=1" ] ||
+    fail "WATCHDOG before READY"
+  [ "$(tail -n 1 "notify_$1.log" | cut -d' ' -f2)" = "STOPPING=1" ] || fail "STOPPING not last"
+  grep -q "^<6>info: " "daemon_$1.log" || fail "log lines lack the syslog priority prefix"
+}
+
+echo "== sd_notify and SIGTERM"
+run_with_signal TERM 2
+echo "== sd_notify and SIGINT"
+run_with_signal INT 1
+echo PASS

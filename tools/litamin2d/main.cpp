@@ -1,0 +1,121 @@
+// litamin2d: LiTAMIN2 odometry as a DDS service. Reads sensor_msgs/PointCloud2 from
+// rt/<stream>/points, runs one tracker per stream on a shared TBB arena, and publishes
+// nav_msgs/Odometry on rt/<stream>/odom, map patches and a status (DiagnosticArray).
+// Runs under systemd as Type=notify (READY, WATCHDOG, STOPPING, STATUS).
+
+#include "litamin2/daemon/daemon_config.hpp"
+#include "litamin2/daemon/dds/daemon_node.hpp"
+#include "litamin2/daemon/logging.hpp"
+#include "litamin2/daemon/sd_notify.hpp"
+#include "litamin2/daemon/shutdown_signals.hpp"
+#include "litamin2/version.hpp"
+
+#include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <iostream>
+
+using namespace litamin2;
+using namespace litamin2::daemon;
+
+namespace {
+
+/// How often the main loop turns (discovery, status, watchdog), at most.
+constexpr std::chrono::milliseconds kLoopPeriod(50);
+
+std::string describe(const DaemonConfig& c) {
+  std::string streams;
+  for (const StreamConfig& s : c.streams) streams += (streams.empty() ? "" : ", ") + s.id;
+  return fmt::format(
+      "domain {}, profile {}, streams [{}], discovery {}, threads {}, queue depth {}", c.dds.domain,
+      to_string(c.dds.profile), streams,
+      c.discovery.enabled ? c.discovery.pattern : std::string("off"),
+      c.threads == 0 ? std::string("auto") : std::to_string(c.threads), c.queue_depth);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Before any thread exists, so that every thread inherits the blocked SIGTERM/SIGINT.
+  ShutdownSignals signals;
+
+  CLI::App app{"litamin2d: LiTAMIN2 LiDAR odometry for many sensor streams over DDS"};
+  std::string config_file = "/etc/litamin2/litamin2d.yaml";
+  bool check_config = false;
+  bool show_version = false;
+  app.add_option("-c,--config", config_file, "daemon configuration (YAML)");
+  app.add_flag("--check-config", check_config, "validate the configuration and exit");
+  app.add_flag("-V,--version", show_version, "print the version and exit");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  if (show_version) {
+    std::cout << "litamin2d " << litamin2::version() << "\n";
+    return 0;
+  }
+
+  DaemonConfig config;
+  try {
+    config = load_daemon_config(config_file);
+  } catch (const ConfigError& e) {
+    std::fprintf(stderr, "<3>error: invalid configuration: %s\n", e.what());
+    return 2;
+  }
+  setup_logging(config.log_level);
+  if (check_config) {
+    std::cout << config_file << ": ok (" << describe(config) << ")\n";
+    return 0;
+  }
+  spdlog::info("litamin2d {} starting: {}", litamin2::version(), describe(config));
+
+  const SdNotifier notifier = SdNotifier::from_environment();
+  const auto watchdog_interval = watchdog_interval_from_environment();
+  WatchdogPinger watchdog(notifier, config.watchdog.enabled && watchdog_interval
+                                        ? *watchdog_interval
+                                        : std::chrono::microseconds(0));
+  int exit_code = 0;
+  try {
+    DaemonNode node(config);
+    notifier.ready();
+    notifier.status(node.summary());
+    if (watchdog.enabled())
+      spdlog::info(
+          "systemd watchdog: pinging every {} ms while healthy",
+          std::chrono::duration_cast<std::chrono::milliseconds>(watchdog.period()).count());
+    auto next_summary = std::chrono::steady_clock::now();
+    int signal = 0;
+    while ((signal = signals.wait_for(kLoopPeriod)) == 0) {
+      const auto now = std::chrono::steady_clock::now();
+      node.poll(now);
+      const bool healthy = node.healthy(now);
+      if (!watchdog.tick(healthy, now) && !healthy && watchdog.enabled())
+        spdlog::error("a frame has been in processing for over {} s: withholding the watchdog",
+                      config.watchdog.stall_timeout_s);
+      if (now >= next_summary) {
+        notifier.status(node.summary(now));
+        next_summary = now + std::chrono::seconds(5);
+      }
+    }
+    spdlog::info("{} received: shutting down", signal == SIGTERM ? "SIGTERM" : "SIGINT");
+    notifier.stopping();
+    const DrainResult drained = node.shutdown();
+    if (!drained.complete) {
+      // A frame is wedged: do not hang on it, systemd would have to kill us.
+      spdlog::error("{} frame(s) still in processing at the deadline; exiting without them",
+                    drained.in_flight);
+      spdlog::default_logger()->flush();
+      std::_Exit(1);
+    }
+  } catch (const ConfigError& e) {
+    spdlog::error("invalid configuration: {}", e.what());
+    exit_code = 2;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    exit_code = 1;
+  }
+  spdlog::default_logger()->flush();
+  return exit_code;
+}
