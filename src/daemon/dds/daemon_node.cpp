@@ -237,10 +237,9 @@ bool DaemonNode::healthy(Clock::time_point now) const {
          std::chrono::duration<double>(config_.watchdog.stall_timeout_s);
 }
 
-void DaemonNode::publish_status(Clock::time_point now) {
+std::vector<StreamStatus> DaemonNode::status(Clock::time_point now) const {
   std::vector<StreamStatus> statuses;
-  const bool stalled = !healthy(now);
-  for (auto& s : streams_) {
+  for (const auto& s : streams_) {
     StreamStatus st;
     st.id = s->config.id;
     st.topic = s->config.topic;
@@ -249,19 +248,29 @@ void DaemonNode::publish_status(Clock::time_point now) {
     st.reading = s->reader != nullptr;
     st.reliable = s->reliable;
     st.samples_lost = s->listener->samples_lost();
+    statuses.push_back(std::move(st));
+  }
+  return statuses;
+}
+
+void DaemonNode::publish_status(Clock::time_point now) {
+  std::vector<StreamStatus> statuses = status(now);
+  const bool stalled = !healthy(now);
+  for (std::size_t i = 0; i < statuses.size(); ++i) {
+    StreamStatus& st = statuses[i];
+    Stream& s = *streams_[i];
     if (stalled) {
       st.level = 2;
       st.message = "processing stalled";
-    } else if (st.counters.dropped > s->reported_dropped) {
+    } else if (st.counters.dropped > s.reported_dropped) {
       st.level = 1;
       st.message = "falling behind: frames dropped";
-    } else if (st.stats.bad_messages > s->reported_bad) {
+    } else if (st.stats.bad_messages > s.reported_bad) {
       st.level = 1;
       st.message = "bad messages received";
     }
-    s->reported_dropped = st.counters.dropped;
-    s->reported_bad = st.stats.bad_messages;
-    statuses.push_back(std::move(st));
+    s.reported_dropped = st.counters.dropped;
+    s.reported_bad = st.stats.bad_messages;
   }
   auto msg = make_status_message(statuses, wall_seconds());
   status_writer_->write(&msg);

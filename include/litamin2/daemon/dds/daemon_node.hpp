@@ -8,6 +8,7 @@
 
 #include "litamin2/daemon/daemon_config.hpp"
 #include "litamin2/daemon/dds/publisher_discovery.hpp"
+#include "litamin2/daemon/dds/status_message.hpp"
 #include "litamin2/daemon/stream_scheduler.hpp"
 #include "litamin2/dds/participant_factory.hpp"
 #include "litamin2/dds/topic_names.hpp"
@@ -52,6 +53,8 @@ class DaemonNode {
   DrainResult shutdown();
 
   std::size_t stream_count() const { return streams_.size(); }
+  /// Every stream's statistics and counters (levels and messages as in the last status).
+  std::vector<StreamStatus> status(Clock::time_point now = Clock::now()) const;
   /// One line for logs and sd_notify STATUS=.
   std::string summary(Clock::time_point now = Clock::now()) const;
 
@@ -80,7 +83,6 @@ class DaemonNode {
   std::unique_ptr<StreamScheduler> scheduler_;
   std::vector<std::unique_ptr<Stream>> streams_;
   Clock::time_point next_status_{};
-  std::map<std::string, std::pair<std::uint64_t, std::uint64_t>> reported_losses_;
   bool stopped_ = false;
 };
 
