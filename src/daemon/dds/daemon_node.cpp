@@ -245,6 +245,8 @@ std::vector<StreamStatus> DaemonNode::status(Clock::time_point now) const {
     st.topic = s->config.topic;
     st.stats = s->stats.snapshot(now);
     st.counters = scheduler_->counters(s->handle);
+    st.stats.frames_dropped = st.counters.dropped;  // the queue counts drops
+    st.stats.frames_failed = st.counters.failed;
     st.reading = s->reader != nullptr;
     st.reliable = s->reliable;
     st.samples_lost = s->listener->samples_lost();
