@@ -22,7 +22,7 @@ TEST(TrackerConfigYaml, EmptyDocumentGivesDefaults) {
   const TrackerConfig config = tracker_config_from_yaml(YAML::Load("{}"));
   EXPECT_EQ(config.voxelizer.voxel_size, TrackerConfig{}.voxelizer.voxel_size);
   EXPECT_EQ(config.registration.mode, CostMode::IcpCov);
-  EXPECT_EQ(config.registration.sigma_icp, 0.5);
+  EXPECT_EQ(config.registration.sigma_icp, 0.1);
   EXPECT_EQ(config.registration.sigma_cov, 3.0);
   EXPECT_EQ(config.registration.lambda, 1e-6);
 }
