@@ -3,7 +3,8 @@
 # daemon (loopback profile, private network namespace); prints per-stream latency (arrival ->
 # odometry published, p50/p99 from the daemon's status), frames dropped, and the offline tool's
 # frames/s on the same scans for comparison. Not a CTest test (timing depends on the machine).
-# Usage: daemon_bench.sh BUILD_DIR WORK_DIR STREAMS [RATE_HZ=10] [FRAMES=30] [THREADS=0]
+# QUEUE_DEPTH (default 4) sets the daemon's per-stream queue.
+# Usage: daemon_bench.sh BUILD_DIR WORK_DIR STREAMS [RATE_HZ=10|max] [FRAMES=30] [THREADS=0]
 set -euo pipefail
 source "$(dirname "$0")/daemon_netns.sh"
 build=$1
@@ -27,7 +28,7 @@ ids=()
   echo "dds: {domain: 19, profile: loopback}"
   echo "discovery: {enabled: false}"
   echo "threads: $threads"
-  echo "queue_depth: 4"
+  echo "queue_depth: ${QUEUE_DEPTH:-4}"
   echo "outputs: {status_period_s: 0.5}"
   echo "streams:"
   for i in $(seq 1 "$streams"); do echo "  - id: bench_$i"; ids+=("bench_$i"); done
@@ -44,18 +45,21 @@ for id in "${ids[@]}"; do
   replay_dirs+=(seq)
 done
 rm -f probe.ready
-"$build/tests/integration/daemon_probe" --domain 19 --expect "$frames" --timeout 300 \
+"$build/tests/integration/daemon_probe" --domain 19 --expect "$frames" --timeout 60 \
   --ready-file probe.ready "${probe_args[@]}" > probe.log 2>&1 &
 probe_pid=$!
 for _ in $(seq 1 300); do [ -f probe.ready ] && break; sleep 0.1; done
 start=$(date +%s.%N)
-"$tools/replay/litamin2-replay" --domain 19 --profile loopback --rate "$rate" \
-  "${replay_dirs[@]}" "${replay_streams[@]}" > replay.log 2>&1
+if [ "$rate" = max ]; then rate_args=(--max); else rate_args=(--rate "$rate"); fi
+"$tools/replay/litamin2-replay" --domain 19 --profile loopback "${rate_args[@]}" \
+  "${replay_dirs[@]}" "${replay_streams[@]}" > replay.log 2>&1 || true
 wait $probe_pid || true
 end=$(date +%s.%N)
+grep -E "^Vm(HWM|RSS)" /proc/$daemon_pid/status | tr -s ' \t' ' ' | paste -sd, - > memory.txt || true
 kill -TERM $daemon_pid
 wait $daemon_pid || true
-grep -E "^status |bit-identical|PASS|FAIL" probe.log
+grep -E "^status |bit-identical|PASS|FAIL" probe.log || true
+echo "litamin2d memory at the end: $(cat memory.txt)"
 python3 - "$streams" "$frames" "$start" "$end" "$offline_fps" <<'PY'
 import re, sys
 streams, frames, start, end, offline = int(sys.argv[1]), int(sys.argv[2]), *map(float, sys.argv[3:6])
