@@ -62,7 +62,8 @@ int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& sh
   app.add_option("--stream,-s", stream_ids,
                  "Stream id of each SEQUENCE_DIR, in order (ROS name rules: letters, digits, '_', "
                  "'/' between tokens)")
-      ->required();
+      ->required()
+      ->allow_extra_args(false);  // one id per --stream: folders after it stay positional
   auto* rate =
       app.add_option("--rate", options.rate_hz, "Frames per second per stream (default 10)");
   auto* max = app.add_flag("--max", options.max_rate,
