@@ -10,6 +10,7 @@
 
 #include "litamin2/io/io_error.hpp"
 #include "litamin2/io/kitti_bin.hpp"
+#include "support/io_test_support.hpp"
 
 namespace fs = std::filesystem;
 using litamin2::PointCloud;
@@ -17,14 +18,9 @@ using namespace litamin2::io;
 
 namespace {
 
-fs::path temp_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::path(LITAMIN2_BINARY_DIR) / "io_test_tmp" /
-                       (std::string(info->test_suite_name()) + "_" + info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using litamin2::testing::expect_io_error;
+using litamin2::testing::temp_dir;
+using litamin2::testing::write_text;
 
 void write_floats(const fs::path& path, const std::vector<float>& values) {
   std::ofstream out(path, std::ios::binary);
@@ -36,20 +32,6 @@ void write_bytes(const fs::path& path, std::size_t n) {
   std::ofstream out(path, std::ios::binary);
   const std::string zeros(n, '\0');
   out.write(zeros.data(), static_cast<std::streamsize>(n));
-}
-
-template <typename F>
-void expect_io_error(F&& f, const std::string& must_contain, const std::string& also = "") {
-  try {
-    f();
-    ADD_FAILURE() << "expected IoError containing '" << must_contain << "'";
-  } catch (const IoError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(must_contain), std::string::npos) << what;
-    if (!also.empty()) {
-      EXPECT_NE(what.find(also), std::string::npos) << what;
-    }
-  }
 }
 
 /// Points along a scan line at ~10 m, as a real scan stores them (consecutive points close).

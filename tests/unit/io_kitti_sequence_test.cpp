@@ -10,6 +10,7 @@
 #include "litamin2/io/kitti_sequence.hpp"
 #include "litamin2/io/pcd.hpp"
 #include "litamin2/io/trajectory.hpp"
+#include "support/io_test_support.hpp"
 
 namespace fs = std::filesystem;
 using litamin2::PointCloud;
@@ -17,33 +18,9 @@ using namespace litamin2::io;
 
 namespace {
 
-fs::path temp_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::path(LITAMIN2_BINARY_DIR) / "io_test_tmp" /
-                       (std::string(info->test_suite_name()) + "_" + info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-}
-
-template <typename F>
-void expect_io_error(F&& f, const std::string& must_contain, const std::string& also = "") {
-  try {
-    f();
-    ADD_FAILURE() << "expected IoError containing '" << must_contain << "'";
-  } catch (const IoError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(must_contain), std::string::npos) << what;
-    if (!also.empty()) {
-      EXPECT_NE(what.find(also), std::string::npos) << what;
-    }
-  }
-}
+using litamin2::testing::expect_io_error;
+using litamin2::testing::temp_dir;
+using litamin2::testing::write_text;
 
 /// A scan whose first point encodes its index, so load order can be checked.
 PointCloud scan(int index, int n = 5) {

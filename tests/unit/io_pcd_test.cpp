@@ -9,6 +9,7 @@
 
 #include "litamin2/io/io_error.hpp"
 #include "litamin2/io/pcd.hpp"
+#include "support/io_test_support.hpp"
 
 namespace fs = std::filesystem;
 using litamin2::PointCloud;
@@ -16,39 +17,15 @@ using namespace litamin2::io;
 
 namespace {
 
-fs::path temp_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::path(LITAMIN2_BINARY_DIR) / "io_test_tmp" /
-                       (std::string(info->test_suite_name()) + "_" + info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-}
+using litamin2::testing::expect_io_error;
+using litamin2::testing::temp_dir;
+using litamin2::testing::write_text;
 
 template <typename T>
 void put(std::string& out, T value) {
   char buf[sizeof(T)];
   std::memcpy(buf, &value, sizeof(T));
   out.append(buf, sizeof(T));
-}
-
-template <typename F>
-void expect_io_error(F&& f, const std::string& must_contain, const std::string& also = "") {
-  try {
-    f();
-    ADD_FAILURE() << "expected IoError containing '" << must_contain << "'";
-  } catch (const IoError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(must_contain), std::string::npos) << what;
-    if (!also.empty()) {
-      EXPECT_NE(what.find(also), std::string::npos) << what;
-    }
-  }
 }
 
 PointCloud sample(bool with_intensity) {
