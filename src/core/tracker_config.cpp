@@ -1,5 +1,7 @@
 #include "litamin2/core/tracker_config.hpp"
 
+#include "litamin2/core/yaml_section.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -8,80 +10,6 @@
 
 namespace litamin2 {
 namespace {
-
-/// Reads the keys of one YAML mapping into fields, rejecting unknown keys.
-class Section {
- public:
-  Section(const YAML::Node& node, std::string path) : node_(node), path_(std::move(path)) {
-    if (node_ && !node_.IsNull() && !node_.IsMap()) {
-      throw ConfigError(name() + ": expected a mapping of keys to values");
-    }
-  }
-
-  template <class T>
-  void read(const std::string& key, T& field) {
-    known_.insert(key);
-    if (!node_ || !node_[key]) return;
-    try {
-      field = node_[key].as<T>();
-    } catch (const YAML::Exception&) {
-      throw ConfigError(name(key) + ": cannot read '" + scalar(key) + "' as " + type_name<T>());
-    }
-  }
-
-  template <class Enum>
-  void read_enum(const std::string& key, Enum& field,
-                 const std::vector<std::pair<std::string, Enum>>& names) {
-    std::string text;
-    read(key, text);
-    if (text.empty()) return;
-    for (const auto& [n, value] : names) {
-      if (n == text) {
-        field = value;
-        return;
-      }
-    }
-    std::string allowed;
-    for (const auto& entry : names) allowed += (allowed.empty() ? "" : ", ") + entry.first;
-    throw ConfigError(name(key) + ": '" + text + "' is not one of: " + allowed);
-  }
-
-  YAML::Node child(const std::string& key) {
-    known_.insert(key);
-    return node_ ? node_[key] : YAML::Node();
-  }
-
-  /// Throws on keys that no read() asked for (typos would otherwise be ignored silently).
-  void reject_unknown() const {
-    if (!node_ || !node_.IsMap()) return;
-    for (const auto& entry : node_) {
-      const std::string key = entry.first.as<std::string>();
-      if (!known_.count(key)) throw ConfigError(name(key) + ": unknown key");
-    }
-  }
-
- private:
-  std::string name(const std::string& key = "") const {
-    if (key.empty()) return path_.empty() ? std::string("config") : path_;
-    return path_.empty() ? key : path_ + "." + key;
-  }
-  std::string scalar(const std::string& key) const {
-    std::ostringstream out;
-    out << node_[key];
-    return out.str();
-  }
-  template <class T>
-  static const char* type_name() {
-    if constexpr (std::is_same_v<T, int>) return "an integer";
-    if constexpr (std::is_same_v<T, double>) return "a number";
-    if constexpr (std::is_same_v<T, bool>) return "true/false";
-    return "a string";
-  }
-
-  YAML::Node node_;
-  std::string path_;
-  std::set<std::string> known_;
-};
 
 const std::vector<std::pair<std::string, CostMode>> kModes = {{"icp", CostMode::Icp},
                                                               {"icp+cov", CostMode::IcpCov}};
@@ -113,15 +41,15 @@ void require(bool ok, const std::string& key, double value, const std::string& r
 
 TrackerConfig tracker_config_from_yaml(const YAML::Node& node) {
   TrackerConfig config;
-  Section root(node, "");
+  YamlSection root(node, "");
 
-  Section voxelizer(root.child("voxelizer"), "voxelizer");
+  YamlSection voxelizer(root.child("voxelizer"), "voxelizer");
   VoxelizerConfig& v = config.voxelizer;
   voxelizer.read("voxel_size", v.voxel_size);
   voxelizer.read("min_points", v.min_points);
   voxelizer.read("min_range", v.min_range);
   voxelizer.read("max_range", v.max_range);
-  Section regularizer(voxelizer.child("regularization"), "voxelizer.regularization");
+  YamlSection regularizer(voxelizer.child("regularization"), "voxelizer.regularization");
   regularizer.read_enum("method", v.regularizer.method, kRegularizations);
   regularizer.read("min_eigen_ratio", v.regularizer.min_eigen_ratio);
   regularizer.read("shape_min_eigen_ratio", v.regularizer.shape_min_eigen_ratio);
@@ -130,11 +58,11 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node) {
   regularizer.reject_unknown();
   voxelizer.reject_unknown();
 
-  Section map(root.child("map"), "map");
+  YamlSection map(root.child("map"), "map");
   map.read("radius", config.map.radius);
   map.reject_unknown();
 
-  Section registration(root.child("registration"), "registration");
+  YamlSection registration(root.child("registration"), "registration");
   RegistrationConfig& r = config.registration;
   registration.read_enum("mode", r.mode, kModes);
   registration.read("sigma_icp", r.sigma_icp);
@@ -154,7 +82,7 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node) {
   registration.read("max_regrids", r.max_regrids);
   registration.reject_unknown();
 
-  Section keyframe(root.child("keyframe"), "keyframe");
+  YamlSection keyframe(root.child("keyframe"), "keyframe");
   keyframe.read("distance", config.keyframe.distance);
   keyframe.read("angle_deg", config.keyframe.angle_deg);
   keyframe.reject_unknown();

@@ -1,5 +1,7 @@
 #include "litamin2/daemon/daemon_config.hpp"
 
+#include "litamin2/core/yaml_section.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -10,85 +12,6 @@
 
 namespace litamin2::daemon {
 namespace {
-
-/// The YAML text of a node, for error messages.
-std::string text_of(const YAML::Node& node) {
-  if (!node) return "";
-  std::ostringstream out;
-  out << node;
-  std::string s = out.str();
-  for (char& c : s)
-    if (c == '\n') c = ' ';
-  return s.size() > 80 ? s.substr(0, 77) + "..." : s;
-}
-
-/// Reads the keys of one YAML mapping, rejecting unknown keys; `path` is the dotted key path
-/// used in messages.
-class Section {
- public:
-  Section(const YAML::Node& node, std::string path) : node_(node), path_(std::move(path)) {
-    if (node_ && !node_.IsNull() && !node_.IsMap())
-      throw ConfigError(name() + ": expected a mapping of keys to values, got '" + text_of(node_) +
-                        "'");
-  }
-
-  template <class T>
-  bool read(const std::string& key, T& field) {
-    known_.insert(key);
-    if (!node_ || !node_.IsMap() || !node_[key] || node_[key].IsNull()) return false;
-    const YAML::Node value = node_[key];
-    try {
-      if (!value.IsScalar()) throw YAML::Exception(YAML::Mark(), "not a scalar");
-      field = value.as<T>();
-    } catch (const YAML::Exception&) {
-      throw ConfigError(name(key) + ": cannot read '" + text_of(value) + "' as " + type_name<T>());
-    }
-    return true;
-  }
-
-  /// Reads a number and checks lo <= value <= hi.
-  template <class T>
-  void read_range(const std::string& key, T& field, T lo, T hi) {
-    if (!read(key, field)) return;
-    if (!(field >= lo && field <= hi)) {
-      std::ostringstream out;
-      out << name(key) << ": " << text_of(node_[key]) << " is out of range [" << lo << ", " << hi
-          << "]";
-      throw ConfigError(out.str());
-    }
-  }
-
-  YAML::Node child(const std::string& key) {
-    known_.insert(key);
-    return node_ && node_.IsMap() ? node_[key] : YAML::Node();
-  }
-
-  void reject_unknown() const {
-    if (!node_ || !node_.IsMap()) return;
-    for (const auto& entry : node_) {
-      const std::string key = entry.first.as<std::string>();
-      if (!known_.count(key)) throw ConfigError(name(key) + ": unknown key");
-    }
-  }
-
-  std::string name(const std::string& key = "") const {
-    if (key.empty()) return path_.empty() ? std::string("config") : path_;
-    return path_.empty() ? key : path_ + "." + key;
-  }
-
- private:
-  template <class T>
-  static const char* type_name() {
-    if constexpr (std::is_same_v<T, int>) return "an integer";
-    if constexpr (std::is_same_v<T, double>) return "a number";
-    if constexpr (std::is_same_v<T, bool>) return "true/false";
-    return "a string";
-  }
-
-  YAML::Node node_;
-  std::string path_;
-  std::set<std::string> known_;
-};
 
 /// `over` merged into a copy of `base`: mappings key by key, anything else replaced.
 YAML::Node merge(const YAML::Node& base, const YAML::Node& over) {
@@ -125,10 +48,10 @@ std::vector<double> numbers(const YAML::Node& node, const std::string& path) {
     try {
       out.push_back(node[i].as<double>());
     } catch (const YAML::Exception&) {
-      throw ConfigError(item + ": cannot read '" + text_of(node[i]) + "' as a number");
+      throw ConfigError(item + ": cannot read '" + yaml_text(node[i]) + "' as a number");
     }
     if (!std::isfinite(out.back()))
-      throw ConfigError(item + ": " + text_of(node[i]) + " is not finite");
+      throw ConfigError(item + ": " + yaml_text(node[i]) + " is not finite");
   }
   return out;
 }
@@ -154,7 +77,7 @@ Eigen::Isometry3d parse_extrinsic(const YAML::Node& node, const std::string& pat
     pose.matrix() = m;
     return pose;
   }
-  Section s(node, path);
+  YamlSection s(node, path);
   if (!node.IsMap()) throw ConfigError(path + ": expected a 4x4 matrix or {xyz, rpy}");
   auto vec3 = [&](const std::string& key) -> std::optional<Eigen::Vector3d> {
     const YAML::Node child = s.child(key);
@@ -249,11 +172,11 @@ StreamConfig discovered_stream(const DaemonConfig& config, const std::string& id
 DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
   DaemonConfig config;
   if (!node || node.IsNull()) throw ConfigError("config: empty; give streams or discovery");
-  Section root(node, "");
+  YamlSection root(node, "");
 
   // dds
   {
-    Section dds(root.child("dds"), "dds");
+    YamlSection dds(root.child("dds"), "dds");
     dds.read_range("domain", config.dds.domain, 0, 232);
     std::string profile;
     if (dds.read("profile", profile)) {
@@ -292,7 +215,7 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
 
   // discovery
   {
-    Section discovery(root.child("discovery"), "discovery");
+    YamlSection discovery(root.child("discovery"), "discovery");
     discovery.read("enabled", config.discovery.enabled);
     discovery.read("pattern", config.discovery.pattern);
     discovery.read_range("max_streams", config.discovery.max_streams, 1, 4096);
@@ -306,12 +229,12 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
   const YAML::Node streams = root.child("streams");
   if (streams && !streams.IsNull()) {
     if (!streams.IsSequence())
-      throw ConfigError("streams: expected a list of streams, got '" + text_of(streams) + "'");
+      throw ConfigError("streams: expected a list of streams, got '" + yaml_text(streams) + "'");
     std::set<std::string> ids, topics;
     for (std::size_t i = 0; i < streams.size(); ++i) {
       const std::string path = "streams[" + std::to_string(i) + "]";
       if (!streams[i].IsMap()) throw ConfigError(path + ": expected a mapping with at least an id");
-      Section s(streams[i], path);
+      YamlSection s(streams[i], path);
       StreamConfig stream;
       if (!s.read("id", stream.id)) throw ConfigError(path + ".id: required");
       if (!is_valid_stream_id(stream.id))
@@ -342,7 +265,7 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
 
   // outputs
   {
-    Section outputs(root.child("outputs"), "outputs");
+    YamlSection outputs(root.child("outputs"), "outputs");
     outputs.read("odom_suffix", config.outputs.odom_suffix);
     outputs.read("map_patches_topic", config.outputs.map_patches_topic);
     outputs.read("status_topic", config.outputs.status_topic);
@@ -358,7 +281,7 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
 
   // watchdog
   {
-    Section watchdog(root.child("watchdog"), "watchdog");
+    YamlSection watchdog(root.child("watchdog"), "watchdog");
     watchdog.read("enabled", config.watchdog.enabled);
     watchdog.read_range("stall_timeout_s", config.watchdog.stall_timeout_s, 0.1, 3600.0);
     watchdog.reject_unknown();

@@ -1,6 +1,7 @@
 #pragma once
 /// Everything a LiTAMIN2 tracker is configured by, in one struct, with YAML load and save.
 
+#include "litamin2/core/config_error.hpp"
 #include "litamin2/core/registration_config.hpp"
 #include "litamin2/core/voxel_map.hpp"
 #include "litamin2/core/voxelizer.hpp"
@@ -30,13 +31,6 @@ struct TrackerConfig {
   RegistrationConfig registration;
   /// When the map is updated.
   KeyframeConfig keyframe;
-};
-
-/// A configuration value that is missing, of the wrong type, out of range, or unknown. The
-/// message names the key (as a dotted path) and the value.
-class ConfigError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
 };
 
 /// Reads a tracker config from a YAML mapping; absent keys keep their defaults, unknown keys
