@@ -1,14 +1,11 @@
 #include "litamin2/core/scan_registration.hpp"
 
+#include "litamin2/core/stopwatch.hpp"
+
 #include <chrono>
 
 namespace litamin2 {
 namespace {
-
-double elapsed_ms(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
-      .count();
-}
 
 bool moved_beyond(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
                   const RegistrationConfig& config) {

@@ -1,6 +1,7 @@
 #include "litamin2/core/tracker.hpp"
 
 #include "litamin2/core/scan_registration.hpp"
+#include "litamin2/core/stopwatch.hpp"
 
 #include <Eigen/Cholesky>
 #include <chrono>
@@ -8,11 +9,6 @@
 
 namespace litamin2 {
 namespace {
-
-double elapsed_ms(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
-      .count();
-}
 
 double rotation_angle(const Eigen::Matrix3d& rotation) {
   return Eigen::AngleAxisd(rotation).angle();

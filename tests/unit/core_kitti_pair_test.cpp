@@ -14,6 +14,7 @@
 #include "litamin2/io/kitti_bin.hpp"
 #include "litamin2/io/kitti_calib.hpp"
 #include "litamin2/io/trajectory.hpp"
+#include "support/register_clouds.hpp"
 
 #include <gtest/gtest.h>
 
@@ -45,16 +46,10 @@ Eigen::Isometry3d kiss_icp_consensus() {
 Eigen::Isometry3d register_pair(const PointCloud& target, const PointCloud& source, CostMode mode,
                                 CorrespondenceMethod method = CorrespondenceMethod::Voxel27,
                                 const Eigen::Isometry3d& initial = Eigen::Isometry3d::Identity()) {
-  VoxelizerConfig voxels;
-  VoxelMap map(voxels, VoxelMapConfig{});
-  map.insert(target, Eigen::Isometry3d::Identity());
-  Voxelizer voxelizer(voxels);
   RegistrationConfig config;
   config.mode = mode;
   config.correspondence = method;
-  const auto search = make_correspondence_search(method, map);
-  const RegistrationResult result =
-      register_scan(source, voxelizer, map, *search, initial, config).result;
+  const RegistrationResult result = testing::register_clouds(target, source, initial, config);
   EXPECT_TRUE(result.valid);
   EXPECT_TRUE(result.converged) << result.iterations << " iterations";
   return result.pose;

@@ -5,6 +5,7 @@
 #include "litamin2/core/scan_registration.hpp"
 #include "litamin2/core/so3.hpp"
 #include "litamin2/core/voxel_map.hpp"
+#include "support/register_clouds.hpp"
 #include "support/synthetic_scene.hpp"
 
 #include <gtest/gtest.h>
@@ -36,10 +37,6 @@ RegistrationResult register_known(const Eigen::Isometry3d& truth, CostMode mode,
   const PointCloud target = testing::synthetic_scene(1);
   // The source sees the same world from `truth`: an independent sampling moved by truth^-1.
   const PointCloud source = testing::transformed(testing::synthetic_scene(2), truth.inverse());
-  VoxelizerConfig voxels;
-  VoxelMap map(voxels, VoxelMapConfig{});
-  map.insert(target, Eigen::Isometry3d::Identity());
-  Voxelizer voxelizer(voxels);
   RegistrationConfig config;
   config.mode = mode;
   config.correspondence = method;
@@ -47,9 +44,7 @@ RegistrationResult register_known(const Eigen::Isometry3d& truth, CostMode mode,
   config.sigma_icp = sigma_icp;
   // Large initial errors converge over more re-voxelisations (each pass corrects ~70 %).
   if (max_correspondence_distance > VoxelizerConfig{}.voxel_size) config.max_regrids = 30;
-  const auto search = make_correspondence_search(method, map);
-  return register_scan(source, voxelizer, map, *search, Eigen::Isometry3d::Identity(), config)
-      .result;
+  return testing::register_clouds(target, source, Eigen::Isometry3d::Identity(), config);
 }
 
 class KnownTransformTest : public ::testing::TestWithParam<Case> {};
