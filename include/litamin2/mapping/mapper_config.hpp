@@ -1,0 +1,84 @@
+#pragma once
+/// Everything the mapper (place recognition, loop verification, pose graph, global map) is
+/// configured by, with YAML load and validation.
+
+#include <string>
+
+namespace YAML {
+class Node;
+}
+
+namespace litamin2::mapping {
+
+/// Place recognition over keyframes (place_descriptor.hpp).
+struct PlaceRecognitionConfig {
+  /// Rings of the polar descriptor grid.
+  int rings = 20;
+  /// Sectors of the polar descriptor grid (yaw resolution 360 / sectors degrees).
+  int sectors = 60;
+  /// Distributions farther than this from the sensor are ignored, metres.
+  double max_range = 80.0;
+  /// Candidates per query kept from the ring-key search before the full descriptor distance.
+  int ring_key_candidates = 10;
+  /// Candidates with a descriptor distance above this are rejected (0 = identical, 1 = unrelated).
+  double max_descriptor_distance = 0.35;
+  /// Keyframes of the same stream closer than this along the trajectory are never loop
+  /// candidates (they are neighbours in the odometry chain), metres.
+  double min_travel_gap = 50.0;
+};
+
+/// Verification of a candidate by LiTAMIN2 registration of the two keyframes' patches
+/// (loop_verifier.hpp).
+struct LoopVerificationConfig {
+  /// Neighbouring keyframes on each side of the candidate merged into its target submap.
+  int submap_neighbours = 3;
+  /// Registration robust scale; wider than odometry's, as the initial guess is coarse, metres.
+  double sigma_icp = 0.5;
+  /// Correspondence gate for the fitness score, metres.
+  double fitness_distance = 1.0;
+  /// A loop is accepted when at least this fraction of the query's distributions has a
+  /// correspondence within fitness_distance at convergence ...
+  double min_fitness = 0.6;
+  /// ... and the root mean square distance of those correspondences is at most this, metres.
+  double max_rmse = 0.5;
+  /// Standard deviations the loop edge's information is built from: rotation (degrees) ...
+  double rotation_sigma_deg = 0.5;
+  /// ... and translation (metres).
+  double translation_sigma = 0.1;
+};
+
+/// Pose graph optimisation (pose_graph.hpp).
+struct PoseGraphConfig {
+  /// Odometry edges' standard deviations per metre travelled between keyframes: translation
+  /// (metres per metre) ...
+  double odometry_translation_sigma_per_m = 0.01;
+  /// ... and rotation (degrees per metre).
+  double odometry_rotation_sigma_deg_per_m = 0.01;
+  /// Floors of those standard deviations for keyframes close together.
+  double odometry_translation_sigma_min = 0.01;
+  double odometry_rotation_sigma_min_deg = 0.01;
+  /// Scale of the robust (Cauchy) loss on loop edges, in standard deviations.
+  double loop_loss_scale = 1.0;
+  /// Solver iteration limit.
+  int max_iterations = 50;
+  /// Solver threads.
+  int threads = 1;
+};
+
+struct MapperConfig {
+  PlaceRecognitionConfig place;
+  LoopVerificationConfig verification;
+  PoseGraphConfig graph;
+  /// Voxel edge of the global map, metres.
+  double map_voxel_size = 3.0;
+  /// Optimise after every this many new loop edges (1 = after each).
+  int optimize_every_loops = 1;
+};
+
+/// Reads a mapper config from a YAML mapping; absent keys keep their defaults, unknown keys
+/// and out-of-range values throw ConfigError naming the key and value.
+MapperConfig mapper_config_from_yaml(const YAML::Node& node);
+/// The full config as YAML (every key).
+std::string mapper_config_to_yaml(const MapperConfig& config);
+
+}  // namespace litamin2::mapping
