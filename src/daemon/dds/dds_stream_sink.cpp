@@ -1,7 +1,7 @@
 #include "litamin2/daemon/dds/dds_stream_sink.hpp"
 
+#include "litamin2/dds/map_patch_conversion.hpp"
 #include "litamin2/dds/odometry_conversion.hpp"
-#include "litamin2/dds/pose_conversion.hpp"
 #include "litamin2/msg/MapPatch.h"
 #include "nav_msgs/msg/Odometry.h"
 
@@ -26,27 +26,9 @@ void DdsStreamSink::publish_odometry(const OdometryOutput& o) {
 }
 
 void DdsStreamSink::publish_keyframe(const KeyframeOutput& k) {
-  litamin2::msg::MapPatch msg;
-  msg.stream_id(k.stream);
-  msg.keyframe_id(k.keyframe_id);
-  msg.stamp().sec(k.stamp.sec);
-  msg.stamp().nanosec(k.stamp.nanosec);
-  msg.frame_id(odom_frame_);
-  msg.pose(dds::to_pose_msg(k.pose));
-  msg.covariance(dds::ros_pose_covariance(k.covariance, k.pose));
-  msg.voxel_size(static_cast<float>(k.voxel_size));
-  auto& out = msg.distributions();
-  out.resize(k.distributions.size());
-  for (std::size_t i = 0; i < k.distributions.size(); ++i) {
-    const Distribution& d = k.distributions[i];
-    auto& v = out[i];
-    v.mean({static_cast<float>(d.mean.x()), static_cast<float>(d.mean.y()),
-            static_cast<float>(d.mean.z())});
-    v.cov({static_cast<float>(d.cov(0, 0)), static_cast<float>(d.cov(0, 1)),
-           static_cast<float>(d.cov(0, 2)), static_cast<float>(d.cov(1, 1)),
-           static_cast<float>(d.cov(1, 2)), static_cast<float>(d.cov(2, 2))});
-    v.count(static_cast<std::uint32_t>(d.count));
-  }
+  litamin2::msg::MapPatch msg =
+      dds::to_map_patch({k.stream, k.keyframe_id}, dds::stamp_to_ns(k.stamp.sec, k.stamp.nanosec),
+                        odom_frame_, k.pose, k.covariance, k.voxel_size, k.distributions);
   if (!map_patch_writer_->write(&msg)) ++write_failures_;
 }
 

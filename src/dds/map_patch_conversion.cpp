@@ -1,0 +1,143 @@
+#include "litamin2/dds/map_patch_conversion.hpp"
+
+#include "litamin2/dds/odometry_conversion.hpp"
+#include "litamin2/dds/pose_conversion.hpp"
+#include "litamin2/dds/topic_names.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+
+namespace litamin2::dds {
+namespace {
+
+constexpr std::int64_t kNsPerSecond = 1'000'000'000;
+
+bool finite(const geometry_msgs::msg::Pose& p) {
+  return std::isfinite(p.position().x()) && std::isfinite(p.position().y()) &&
+         std::isfinite(p.position().z()) && std::isfinite(p.orientation().x()) &&
+         std::isfinite(p.orientation().y()) && std::isfinite(p.orientation().z()) &&
+         std::isfinite(p.orientation().w());
+}
+
+bool fail(std::string* error, std::string message) {
+  if (error) *error = std::move(message);
+  return false;
+}
+
+}  // namespace
+
+std::int64_t stamp_to_ns(std::int32_t sec, std::uint32_t nanosec) {
+  return static_cast<std::int64_t>(sec) * kNsPerSecond + static_cast<std::int64_t>(nanosec);
+}
+
+void ns_to_stamp(std::int64_t ns, std::int32_t& sec, std::uint32_t& nanosec) {
+  std::int64_t s = ns / kNsPerSecond;
+  std::int64_t rem = ns % kNsPerSecond;
+  if (rem < 0) {
+    rem += kNsPerSecond;
+    --s;
+  }
+  sec = static_cast<std::int32_t>(s);
+  nanosec = static_cast<std::uint32_t>(rem);
+}
+
+litamin2::msg::MapPatch to_map_patch(const mapping::KeyframeKey& key, std::int64_t stamp_ns,
+                                     const std::string& frame_id, const Eigen::Isometry3d& pose,
+                                     const mapping::Matrix6d& left_covariance, double voxel_size,
+                                     const std::vector<Distribution>& distributions) {
+  litamin2::msg::MapPatch msg;
+  msg.stream_id(key.stream);
+  msg.keyframe_id(key.id);
+  std::int32_t sec = 0;
+  std::uint32_t nanosec = 0;
+  ns_to_stamp(stamp_ns, sec, nanosec);
+  msg.stamp().sec(sec);
+  msg.stamp().nanosec(nanosec);
+  msg.frame_id(frame_id);
+  msg.pose(to_pose_msg(pose));
+  msg.covariance(ros_pose_covariance(left_covariance, pose));
+  msg.voxel_size(static_cast<float>(voxel_size));
+  auto& out = msg.distributions();
+  out.resize(distributions.size());
+  for (std::size_t i = 0; i < distributions.size(); ++i) {
+    const Distribution& d = distributions[i];
+    auto& v = out[i];
+    v.mean({static_cast<float>(d.mean.x()), static_cast<float>(d.mean.y()),
+            static_cast<float>(d.mean.z())});
+    v.cov({static_cast<float>(d.cov(0, 0)), static_cast<float>(d.cov(0, 1)),
+           static_cast<float>(d.cov(0, 2)), static_cast<float>(d.cov(1, 1)),
+           static_cast<float>(d.cov(1, 2)), static_cast<float>(d.cov(2, 2))});
+    v.count(static_cast<std::uint32_t>(d.count < 0 ? 0 : d.count));
+  }
+  return msg;
+}
+
+litamin2::msg::MapPatch to_map_patch(const mapping::Keyframe& keyframe,
+                                     const std::string& frame_id) {
+  return to_map_patch(keyframe.key, keyframe.stamp_ns, frame_id, keyframe.odom_pose,
+                      keyframe.covariance, keyframe.voxel_size, keyframe.distributions);
+}
+
+std::optional<mapping::Keyframe> from_map_patch(const litamin2::msg::MapPatch& msg,
+                                                std::string* error) {
+  if (const auto why = stream_id_error(msg.stream_id())) {
+    fail(error, "stream id '" + msg.stream_id() + "': " + *why);
+    return std::nullopt;
+  }
+  const std::string where =
+      "patch " + msg.stream_id() + "/" + std::to_string(msg.keyframe_id()) + ": ";
+  if (!finite(msg.pose())) {
+    fail(error, where + "non-finite pose");
+    return std::nullopt;
+  }
+  if (msg.stamp().nanosec() >= kNsPerSecond) {
+    fail(error, where + "stamp nanosec " + std::to_string(msg.stamp().nanosec()) + " >= 1e9");
+    return std::nullopt;
+  }
+  for (double c : msg.covariance())
+    if (!std::isfinite(c)) {
+      fail(error, where + "non-finite covariance");
+      return std::nullopt;
+    }
+  if (!(std::isfinite(msg.voxel_size()) && msg.voxel_size() > 0.0f)) {
+    fail(error, where + "voxel size " + std::to_string(msg.voxel_size()) + " is not positive");
+    return std::nullopt;
+  }
+
+  mapping::Keyframe kf;
+  kf.key.stream = msg.stream_id();
+  kf.key.id = msg.keyframe_id();
+  kf.stamp_ns = stamp_to_ns(msg.stamp().sec(), msg.stamp().nanosec());
+  kf.odom_pose = from_pose_msg(msg.pose());
+  kf.covariance = left_covariance_from_ros(msg.covariance(), kf.odom_pose);
+  kf.voxel_size = msg.voxel_size();
+  const auto& in = msg.distributions();
+  kf.distributions.resize(in.size());
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    const auto& v = in[i];
+    for (float x : v.mean())
+      if (!std::isfinite(x)) {
+        fail(error, where + "distribution " + std::to_string(i) + " has a non-finite mean");
+        return std::nullopt;
+      }
+    for (float x : v.cov())
+      if (!std::isfinite(x)) {
+        fail(error, where + "distribution " + std::to_string(i) + " has a non-finite covariance");
+        return std::nullopt;
+      }
+    Distribution& d = kf.distributions[i];
+    d.mean = Eigen::Vector3d(v.mean()[0], v.mean()[1], v.mean()[2]);
+    const auto& c = v.cov();
+    d.cov << c[0], c[1], c[2], c[1], c[3], c[4], c[2], c[4], c[5];
+    d.count = static_cast<int>(std::min<std::uint32_t>(v.count(), 0x7fffffff));
+    d.shape_cov = d.cov;
+    bool invertible = false;
+    Eigen::Matrix3d inverse;
+    d.cov.computeInverseWithCheck(inverse, invertible);
+    d.shape_cov_inv = invertible ? inverse : Eigen::Matrix3d::Identity();
+  }
+  return kf;
+}
+
+}  // namespace litamin2::dds
