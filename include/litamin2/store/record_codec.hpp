@@ -1,0 +1,42 @@
+#pragma once
+/// Byte encodings of the keyframe store's BLOB columns. All are little-endian whatever the
+/// host, so a store file can be copied between machines.
+///
+/// - pose: 12 float64, the 3x4 matrix [R | t] in column-major order (R's columns, then t);
+///   the bottom row of the isometry is implied.
+/// - 6x6 matrix (covariance, information): 36 float64, column-major.
+/// - distributions: 40 bytes per distribution, the layout of litamin2/msg/VoxelDistribution.idl:
+///   float32 mean[3], float32 covariance upper triangle (xx, xy, xz, yy, yz, zz), uint32 count.
+///   Only the ICP-term covariance is stored; the Cov term's shape_cov and shape_cov_inv are
+///   recomputed on decoding with the caller's regulariser, as the tracker computes them.
+///
+/// Decoders throw std::invalid_argument with the reason when the bytes cannot be a value of
+/// the type (wrong size, non-finite pose, count out of range); the store adds which row it was.
+
+#include "litamin2/core/covariance_regularizer.hpp"
+#include "litamin2/core/distribution.hpp"
+#include "litamin2/mapping/keyframe.hpp"
+
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace litamin2::store {
+
+constexpr std::size_t kPoseBytes = 12 * sizeof(double);
+constexpr std::size_t kMatrix6Bytes = 36 * sizeof(double);
+constexpr std::size_t kDistributionBytes = 10 * 4;
+
+std::string encode_pose(const Eigen::Isometry3d& pose);
+Eigen::Isometry3d decode_pose(const void* data, std::size_t size);
+
+std::string encode_matrix6(const mapping::Matrix6d& m);
+mapping::Matrix6d decode_matrix6(const void* data, std::size_t size);
+
+/// Throws std::invalid_argument if a count is negative.
+std::string encode_distributions(const std::vector<Distribution>& distributions);
+std::vector<Distribution> decode_distributions(const void* data, std::size_t size,
+                                               const RegularizerConfig& regularizer);
+
+}  // namespace litamin2::store
