@@ -1,0 +1,110 @@
+#pragma once
+/// The aggregator's durable store of keyframes, loop edges and corrected poses: one SQLite
+/// file in WAL mode.
+///
+/// Every keyframe received is inserted once (idempotently, so a patch published twice is
+/// harmless) and survives a crash of the process; on restart the mapper is rebuilt from
+/// load_keyframes(), which returns them in canonical order. Loop edges and corrected poses are
+/// derived data, replaced as a whole after each optimisation so the latest result is available
+/// without recomputation.
+///
+/// Durability: the file is in WAL mode with synchronous=NORMAL by default. A transaction is
+/// in the write-ahead log (the operating system's cache) when its commit returns, so it survives
+/// the process crashing or being killed (kill -9); only a power loss or kernel crash can lose
+/// the last transactions since the latest checkpoint, and even then the file stays consistent.
+/// StoreOptions::synchronous_full makes every commit wait for fsync (FULL), which also survives
+/// power loss at the cost of one disk flush per transaction.
+///
+/// A file that is not a keyframe store (not SQLite, truncated, another application's database,
+/// an unknown schema version) is refused with StoreError and never modified.
+///
+/// Not thread-safe: use one KeyframeStore per thread (several may open the same file, also
+/// from several processes; writers then wait for each other up to busy_timeout_ms).
+
+#include "litamin2/core/covariance_regularizer.hpp"
+#include "litamin2/mapping/keyframe.hpp"
+#include "litamin2/mapping/loop_edge.hpp"
+#include "litamin2/mapping/mapper.hpp"
+#include "litamin2/store/store_error.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace litamin2::store {
+
+enum class OpenMode {
+  /// Opens an existing store, or creates one if the file is missing or empty (0 bytes).
+  CreateIfMissing,
+  /// Opens an existing store for reading and writing; a missing or empty file is an error.
+  MustExist,
+  /// Opens an existing store for reading only; every write throws StoreError.
+  ReadOnly,
+};
+
+struct StoreOptions {
+  /// synchronous=FULL instead of NORMAL: commits also survive power loss (see the file comment).
+  bool synchronous_full = false;
+  /// How long a write waits for another connection's transaction before failing.
+  int busy_timeout_ms = 5000;
+};
+
+/// A keyframe's latest optimised pose, as the mapper reports it.
+using CorrectedPose = mapping::KeyframePose;
+
+class KeyframeStore {
+ public:
+  /// SQLite application_id (file header offset 68) of a keyframe store: "LT2K".
+  static constexpr std::int32_t kApplicationId = 0x4C54324B;
+  /// Schema version (PRAGMA user_version) this build reads and writes.
+  static constexpr int kSchemaVersion = 1;
+
+  /// Opens or creates the store at `path`. Throws StoreError naming the path and the reason.
+  static KeyframeStore open(const std::string& path, OpenMode mode,
+                            const StoreOptions& options = {});
+
+  KeyframeStore(KeyframeStore&&) noexcept;
+  KeyframeStore& operator=(KeyframeStore&&) noexcept;
+  KeyframeStore(const KeyframeStore&) = delete;
+  KeyframeStore& operator=(const KeyframeStore&) = delete;
+  /// Closes the file; the write-ahead log is checkpointed into it when this is the last
+  /// connection.
+  ~KeyframeStore();
+
+  const std::string& path() const;
+
+  /// Inserts `keyframe` in its own transaction unless a keyframe with its key is stored
+  /// already (then the stored one is kept unchanged). Returns true if it was new.
+  bool insert_keyframe(const mapping::Keyframe& keyframe);
+  /// Inserts the keyframes not stored yet, all in one transaction (all or none on error).
+  /// Returns how many were new.
+  std::size_t insert_keyframes(const std::vector<const mapping::Keyframe*>& keyframes);
+
+  /// Every keyframe, in canonical order (mapping::canonical_before). Distributions get their
+  /// cov, shape_cov and shape_cov_inv from the stored covariance with `regularizer`.
+  std::vector<mapping::Keyframe> load_keyframes(const RegularizerConfig& regularizer = {}) const;
+  std::size_t keyframe_count() const;
+  bool contains(const mapping::KeyframeKey& key) const;
+
+  /// Replaces every stored loop edge with `edges`, in one transaction. Two edges with the same
+  /// (from, to) are an error.
+  void replace_loop_edges(const std::vector<mapping::LoopEdge>& edges);
+  /// The loop edges of the latest replace_loop_edges, in the order given to it.
+  std::vector<mapping::LoopEdge> load_loop_edges() const;
+
+  /// Replaces every stored corrected pose with `poses`, in one transaction. Two poses of the
+  /// same keyframe are an error.
+  void replace_corrected_poses(const std::vector<CorrectedPose>& poses);
+  /// The corrected poses of the latest replace_corrected_poses, ordered by key.
+  std::vector<CorrectedPose> load_corrected_poses() const;
+
+ private:
+  struct Impl;
+  explicit KeyframeStore(std::unique_ptr<Impl> impl);
+  Impl& impl() const;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace litamin2::store

@@ -1,0 +1,650 @@
+#include "litamin2/store/keyframe_store.hpp"
+
+#include <sqlite3.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "litamin2/store/record_codec.hpp"
+
+namespace litamin2::store {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Tables are created in this order in one transaction; a store missing any of them is corrupt.
+// Within the keyframes table the large BLOBs come last: SQLite reads a row's columns in order,
+// so small columns after a large BLOB would cost a walk through its overflow pages.
+constexpr const char* kSchema = R"sql(
+CREATE TABLE keyframes (
+  stream TEXT NOT NULL,
+  id INTEGER NOT NULL,
+  stamp_ns INTEGER NOT NULL,
+  received_seq INTEGER NOT NULL,
+  voxel_size REAL NOT NULL,
+  pose BLOB NOT NULL,
+  covariance BLOB NOT NULL,
+  distributions BLOB NOT NULL,
+  PRIMARY KEY (stream, id)
+);
+CREATE UNIQUE INDEX keyframes_by_arrival ON keyframes (received_seq);
+CREATE INDEX keyframes_by_canonical_order ON keyframes (stamp_ns, stream, id);
+CREATE TABLE loop_edges (
+  from_stream TEXT NOT NULL,
+  from_id INTEGER NOT NULL,
+  to_stream TEXT NOT NULL,
+  to_id INTEGER NOT NULL,
+  fitness REAL NOT NULL,
+  rmse REAL NOT NULL,
+  relative BLOB NOT NULL,
+  information BLOB NOT NULL,
+  PRIMARY KEY (from_stream, from_id, to_stream, to_id)
+);
+CREATE TABLE corrected_poses (
+  stream TEXT NOT NULL,
+  id INTEGER NOT NULL,
+  frame TEXT NOT NULL,
+  pose BLOB NOT NULL,
+  PRIMARY KEY (stream, id)
+);
+)sql";
+constexpr std::array<const char*, 3> kTables = {"keyframes", "loop_edges", "corrected_poses"};
+
+std::string describe(const mapping::KeyframeKey& key) {
+  return "'" + key.stream + "'/" + std::to_string(key.id);
+}
+
+std::string hex32(std::uint32_t v) {
+  char buf[16];
+  std::snprintf(buf, sizeof(buf), "0x%08X", v);
+  return buf;
+}
+
+[[noreturn]] void throw_sqlite(sqlite3* db, const std::string& path, const std::string& context) {
+  throw StoreError(path, context + ": " + (db ? sqlite3_errmsg(db) : "out of memory"));
+}
+
+struct ConnectionCloser {
+  void operator()(sqlite3* db) const { sqlite3_close_v2(db); }
+};
+using Connection = std::unique_ptr<sqlite3, ConnectionCloser>;
+
+Connection open_connection(const std::string& path, int flags) {
+  sqlite3* raw = nullptr;
+  const int rc = sqlite3_open_v2(path.c_str(), &raw, flags | SQLITE_OPEN_NOMUTEX, nullptr);
+  Connection db(raw);
+  if (rc != SQLITE_OK) throw_sqlite(db.get(), path, "cannot open");
+  sqlite3_extended_result_codes(db.get(), 1);
+  return db;
+}
+
+void exec(sqlite3* db, const std::string& path, const char* sql) {
+  if (sqlite3_exec(db, sql, nullptr, nullptr, nullptr) != SQLITE_OK) {
+    throw_sqlite(db, path, std::string("'") + sql + "' failed");
+  }
+}
+
+/// A prepared statement, finalised on destruction.
+class Statement {
+ public:
+  Statement(sqlite3* db, const std::string& path, const char* sql) : db_(db), path_(&path) {
+    if (sqlite3_prepare_v3(db, sql, -1, SQLITE_PREPARE_PERSISTENT, &stmt_, nullptr) != SQLITE_OK) {
+      throw_sqlite(db, path, std::string("cannot prepare '") + sql + "'");
+    }
+  }
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+  ~Statement() { sqlite3_finalize(stmt_); }
+
+  sqlite3_stmt* get() const { return stmt_; }
+
+  /// Steps once: true if a row is available, false when done. Throws on error, naming
+  /// `context`.
+  bool step(const std::string& context) {
+    const int rc = sqlite3_step(stmt_);
+    if (rc == SQLITE_ROW) return true;
+    if (rc == SQLITE_DONE) return false;
+    throw_sqlite(db_, *path_, context);
+  }
+  void reset() {
+    sqlite3_reset(stmt_);
+    sqlite3_clear_bindings(stmt_);
+  }
+
+  void bind(int i, std::int64_t v) { sqlite3_bind_int64(stmt_, i, v); }
+  void bind(int i, double v) { sqlite3_bind_double(stmt_, i, v); }
+  // The bound strings must outlive the step (SQLITE_STATIC avoids a copy of large BLOBs).
+  void bind_text(int i, const std::string& s) {
+    sqlite3_bind_text(stmt_, i, s.data(), static_cast<int>(s.size()), SQLITE_STATIC);
+  }
+  void bind_blob(int i, const std::string& s) {
+    sqlite3_bind_blob(stmt_, i, s.data(), static_cast<int>(s.size()), SQLITE_STATIC);
+  }
+
+ private:
+  sqlite3* db_;
+  const std::string* path_;
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+/// Resets a statement (and clears its bindings) when leaving the scope that used it.
+struct ResetOnExit {
+  Statement& statement;
+  ~ResetOnExit() { statement.reset(); }
+};
+
+/// BEGIN IMMEDIATE ... COMMIT, rolled back if commit() is not reached.
+class Transaction {
+ public:
+  Transaction(sqlite3* db, const std::string& path) : db_(db), path_(path) {
+    exec(db_, path_, "BEGIN IMMEDIATE");
+  }
+  Transaction(const Transaction&) = delete;
+  Transaction& operator=(const Transaction&) = delete;
+  ~Transaction() {
+    if (!done_) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+  }
+  void commit() {
+    exec(db_, path_, "COMMIT");
+    done_ = true;
+  }
+
+ private:
+  sqlite3* db_;
+  const std::string& path_;
+  bool done_ = false;
+};
+
+// Column readers of a row being loaded; they throw std::invalid_argument (turned into a
+// StoreError naming the row by the caller) when the stored value has the wrong type.
+std::string column_text(sqlite3_stmt* s, int i, const char* name) {
+  if (sqlite3_column_type(s, i) != SQLITE_TEXT) {
+    throw std::invalid_argument(std::string(name) + " is not text");
+  }
+  const auto* text = reinterpret_cast<const char*>(sqlite3_column_text(s, i));
+  return std::string(text, static_cast<std::size_t>(sqlite3_column_bytes(s, i)));
+}
+std::int64_t column_int(sqlite3_stmt* s, int i, const char* name) {
+  if (sqlite3_column_type(s, i) != SQLITE_INTEGER) {
+    throw std::invalid_argument(std::string(name) + " is not an integer");
+  }
+  return sqlite3_column_int64(s, i);
+}
+std::uint64_t column_id(sqlite3_stmt* s, int i, const char* name) {
+  const std::int64_t id = column_int(s, i, name);
+  if (id < 0) throw std::invalid_argument(std::string(name) + " is negative");
+  return static_cast<std::uint64_t>(id);
+}
+double column_real(sqlite3_stmt* s, int i, const char* name) {
+  const int type = sqlite3_column_type(s, i);
+  if (type != SQLITE_FLOAT && type != SQLITE_INTEGER) {
+    throw std::invalid_argument(std::string(name) + " is not a number");
+  }
+  return sqlite3_column_double(s, i);
+}
+/// The BLOB at column i: {data, size}. Pointer valid until the next step.
+std::pair<const void*, std::size_t> column_blob(sqlite3_stmt* s, int i, const char* name) {
+  if (sqlite3_column_type(s, i) != SQLITE_BLOB) {
+    throw std::invalid_argument(std::string(name) + " is not a blob");
+  }
+  const void* data = sqlite3_column_blob(s, i);
+  return {data, static_cast<std::size_t>(sqlite3_column_bytes(s, i))};
+}
+
+std::uint32_t big_endian32(const unsigned char* p) {
+  return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) |
+         std::uint32_t{p[3]};
+}
+
+/// Throws unless the database is a keyframe store of this build's schema version.
+void check_identity(const std::string& path, std::uint32_t application_id,
+                    std::int64_t user_version) {
+  if (application_id != static_cast<std::uint32_t>(KeyframeStore::kApplicationId)) {
+    throw StoreError(path,
+                     "not a keyframe store: an SQLite database of another application "
+                     "(application_id " +
+                         hex32(application_id) + ", a keyframe store has " +
+                         hex32(KeyframeStore::kApplicationId) + ")");
+  }
+  if (user_version != KeyframeStore::kSchemaVersion) {
+    throw StoreError(path, "keyframe store schema version " + std::to_string(user_version) +
+                               (user_version > KeyframeStore::kSchemaVersion
+                                    ? " is newer than this build's "
+                                    : " is not supported; this build reads ") +
+                               std::to_string(KeyframeStore::kSchemaVersion));
+  }
+}
+
+/// Checks, by reading the file itself, that an existing non-empty file is a whole SQLite
+/// database of a keyframe store, before SQLite touches it: SQLite would report random bytes
+/// only on first use, would read a truncated file's missing pages as zeros, and opening another
+/// application's database in WAL mode would leave -wal and -shm files next to it.
+void check_file_header(const std::string& path, std::uintmax_t file_size) {
+  // https://www.sqlite.org/fileformat.html#the_database_header
+  constexpr std::size_t kHeaderSize = 100;
+  static const char kMagic[] = "SQLite format 3";  // 16 bytes with the terminating NUL
+  if (file_size < kHeaderSize) {
+    throw StoreError(path, "not a keyframe store: " + std::to_string(file_size) +
+                               " bytes, too short to be an SQLite database");
+  }
+  unsigned char header[kHeaderSize];
+  std::ifstream in(path, std::ios::binary);
+  if (!in.read(reinterpret_cast<char*>(header), kHeaderSize)) {
+    throw StoreError(path, "cannot read the file header");
+  }
+  if (std::memcmp(header, kMagic, sizeof(kMagic)) != 0) {
+    throw StoreError(path, "not a keyframe store: not an SQLite database (no SQLite header)");
+  }
+  const std::uint32_t page_size_field = (std::uint32_t{header[16]} << 8) | header[17];
+  const std::uint32_t page_size = page_size_field == 1 ? 65536u : page_size_field;
+  if (page_size < 512 || page_size > 65536 || (page_size & (page_size - 1)) != 0) {
+    throw StoreError(path, "corrupt SQLite database: invalid page size " +
+                               std::to_string(page_size_field) + " in the header");
+  }
+  if (file_size % page_size != 0) {
+    throw StoreError(path, "truncated or corrupt SQLite database: " + std::to_string(file_size) +
+                               " bytes is not a whole number of " + std::to_string(page_size) +
+                               "-byte pages");
+  }
+  // The page count in the header is valid when the change counter matches version-valid-for.
+  // It can legitimately exceed the file while a write-ahead log holds pages not yet copied
+  // into the file (a checkpoint interrupted by a crash), so it is checked only without a log.
+  const std::uint32_t change_counter = big_endian32(header + 24);
+  const std::uint32_t page_count = big_endian32(header + 28);
+  const std::uint32_t valid_for = big_endian32(header + 92);
+  std::error_code ec;
+  const std::uintmax_t wal_size = fs::file_size(path + "-wal", ec);
+  const bool has_wal = !ec && wal_size > 0;
+  if (!has_wal && page_count > 0 && change_counter == valid_for &&
+      std::uintmax_t{page_count} * page_size > file_size) {
+    throw StoreError(path, "truncated SQLite database: the header says " +
+                               std::to_string(page_count) + " pages of " +
+                               std::to_string(page_size) + " bytes but the file has " +
+                               std::to_string(file_size) + " bytes");
+  }
+  // Both are written when the store is created (before it switches to WAL) and never change,
+  // so the file's own header has them even while a log holds newer pages.
+  const std::int32_t user_version = static_cast<std::int32_t>(big_endian32(header + 60));
+  const std::uint32_t application_id = big_endian32(header + 68);
+  check_identity(path, application_id, user_version);
+}
+
+std::int64_t query_int(sqlite3* db, const std::string& path, const char* sql) {
+  Statement s(db, path, sql);
+  if (!s.step(std::string("'") + sql + "' failed")) {
+    throw StoreError(path, std::string("'") + sql + "' returned no row");
+  }
+  return sqlite3_column_int64(s.get(), 0);
+}
+
+/// Checks through SQLite that the database at `path`, whose header says it is a keyframe
+/// store, is one: readable, with its tables. A read-only connection, so that nothing (not even
+/// a hot journal's rollback) writes to a file that is not ours.
+void check_is_keyframe_store(const std::string& path) {
+  Connection db = open_connection(path, SQLITE_OPEN_READONLY);
+  std::uint32_t application_id = 0;
+  std::int64_t user_version = 0;
+  std::vector<std::string> missing_tables;
+  try {
+    application_id = static_cast<std::uint32_t>(query_int(db.get(), path, "PRAGMA application_id"));
+    user_version = query_int(db.get(), path, "PRAGMA user_version");
+    Statement tables(db.get(), path,
+                     "SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = ?");
+    for (const char* table : kTables) {
+      ResetOnExit reset{tables};
+      sqlite3_bind_text(tables.get(), 1, table, -1, SQLITE_STATIC);
+      tables.step("cannot read the schema");
+      if (sqlite3_column_int64(tables.get(), 0) != 1) missing_tables.emplace_back(table);
+    }
+  } catch (const StoreError&) {
+    // SQLite's own reason: "file is not a database", "database disk image is malformed".
+    throw StoreError(path, std::string("corrupt keyframe store: not a valid SQLite database (") +
+                               sqlite3_errmsg(db.get()) + ")");
+  }
+  check_identity(path, application_id, user_version);
+  if (!missing_tables.empty()) {
+    throw StoreError(path,
+                     "corrupt keyframe store: table " + missing_tables.front() + " is missing");
+  }
+}
+
+/// Creates the schema in a new (missing or empty) file, in one transaction: a crash leaves
+/// either an empty file or a complete store. Run in the default rollback-journal mode;
+/// the caller switches to WAL afterwards.
+void create_schema(sqlite3* db, const std::string& path) {
+  Transaction tx(db, path);
+  if (query_int(db, path, "SELECT count(*) FROM sqlite_master") != 0) {
+    throw StoreError(path, "was initialised by another connection while being created; reopen it");
+  }
+  exec(db, path, kSchema);
+  exec(db, path,
+       ("PRAGMA application_id = " + std::to_string(KeyframeStore::kApplicationId)).c_str());
+  exec(db, path,
+       ("PRAGMA user_version = " + std::to_string(KeyframeStore::kSchemaVersion)).c_str());
+  tx.commit();
+}
+
+}  // namespace
+
+struct KeyframeStore::Impl {
+  std::string path;
+  bool read_only = false;
+  // Declared before the statements, so destroyed (closed) after they are finalised.
+  Connection db;
+  std::unique_ptr<Statement> insert_keyframe;
+  std::unique_ptr<Statement> contains;
+  std::unique_ptr<Statement> count;
+
+  void require_writable(const char* operation) const {
+    if (read_only) throw StoreError(path, std::string(operation) + ": the store is open read-only");
+  }
+
+  /// Inserts one keyframe in the current transaction (or its own). True if it was new.
+  bool insert(const mapping::Keyframe& kf) {
+    const std::string what = "cannot store keyframe " + describe(kf.key);
+    if (kf.key.stream.empty()) throw StoreError(path, what + ": empty stream name");
+    if (kf.key.id > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
+      throw StoreError(path, what + ": id exceeds the largest storable id 2^63-1");
+    }
+    if (!kf.odom_pose.matrix().allFinite()) throw StoreError(path, what + ": non-finite pose");
+    if (!std::isfinite(kf.voxel_size)) throw StoreError(path, what + ": non-finite voxel size");
+    std::string distributions;
+    try {
+      distributions = encode_distributions(kf.distributions);
+    } catch (const std::invalid_argument& e) {
+      throw StoreError(path, what + ": " + e.what());
+    }
+    const std::string pose = encode_pose(kf.odom_pose);
+    const std::string covariance = encode_matrix6(kf.covariance);
+    Statement& s = *insert_keyframe;
+    ResetOnExit reset{s};
+    s.bind_text(1, kf.key.stream);
+    s.bind(2, static_cast<std::int64_t>(kf.key.id));
+    s.bind(3, kf.stamp_ns);
+    s.bind(4, kf.voxel_size);
+    s.bind_blob(5, pose);
+    s.bind_blob(6, covariance);
+    s.bind_blob(7, distributions);
+    s.step(what);
+    return sqlite3_changes(db.get()) > 0;
+  }
+};
+
+KeyframeStore KeyframeStore::open(const std::string& path, OpenMode mode,
+                                  const StoreOptions& options) {
+  if (path.empty()) throw StoreError(path, "empty store path");
+  if (options.busy_timeout_ms < 0) {
+    throw StoreError(path, "negative busy_timeout_ms " + std::to_string(options.busy_timeout_ms));
+  }
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  bool create = false;
+  if (!fs::exists(status)) {
+    if (mode != OpenMode::CreateIfMissing) throw StoreError(path, "keyframe store does not exist");
+    create = true;
+  } else if (!fs::is_regular_file(status)) {
+    throw StoreError(path, "is not a regular file");
+  } else {
+    const std::uintmax_t size = fs::file_size(path, ec);
+    if (ec) throw StoreError(path, "cannot read the file size: " + ec.message());
+    if (size == 0) {
+      if (mode != OpenMode::CreateIfMissing) {
+        throw StoreError(path, "file is empty, not a keyframe store");
+      }
+      create = true;
+    } else {
+      check_file_header(path, size);
+      check_is_keyframe_store(path);
+    }
+  }
+
+  auto impl = std::make_unique<Impl>();
+  impl->path = path;
+  impl->read_only = mode == OpenMode::ReadOnly;
+  const int flags = impl->read_only ? SQLITE_OPEN_READONLY
+                                    : SQLITE_OPEN_READWRITE | (create ? SQLITE_OPEN_CREATE : 0);
+  impl->db = open_connection(path, flags);
+  sqlite3* db = impl->db.get();
+  sqlite3_busy_timeout(db, options.busy_timeout_ms);
+  if (create) create_schema(db, path);
+  if (!impl->read_only) {
+    // WAL is a property of the file (it persists); setting it again is a no-op. It lets readers
+    // work while a writer commits and makes a commit one append to the log.
+    Statement wal(db, path, "PRAGMA journal_mode = WAL");
+    wal.step("cannot switch to WAL mode");
+    const auto* journal_mode = reinterpret_cast<const char*>(sqlite3_column_text(wal.get(), 0));
+    if (journal_mode == nullptr || std::string(journal_mode) != "wal") {
+      throw StoreError(path, std::string("cannot switch to WAL mode (journal mode stays ") +
+                                 (journal_mode ? journal_mode : "unknown") +
+                                 "; is the file on a network file system?)");
+    }
+  }
+  // NORMAL: in WAL mode a commit is durable across a crash of the process (kill -9 included);
+  // only a power loss may lose the last commits since a checkpoint. FULL fsyncs every commit.
+  exec(db, path,
+       options.synchronous_full ? "PRAGMA synchronous = FULL" : "PRAGMA synchronous = NORMAL");
+
+  // received_seq numbers keyframes in arrival order; computed in the statement so that
+  // several writers (each in its own transaction) never reuse a number.
+  impl->insert_keyframe = std::make_unique<Statement>(
+      db, impl->path,
+      "INSERT OR IGNORE INTO keyframes (stream, id, stamp_ns, voxel_size, pose, covariance, "
+      "distributions, received_seq) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, "
+      "(SELECT coalesce(max(received_seq), 0) + 1 FROM keyframes))");
+  impl->contains = std::make_unique<Statement>(
+      db, impl->path, "SELECT 1 FROM keyframes WHERE stream = ?1 AND id = ?2");
+  impl->count = std::make_unique<Statement>(db, impl->path, "SELECT count(*) FROM keyframes");
+  return KeyframeStore(std::move(impl));
+}
+
+KeyframeStore::KeyframeStore(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+KeyframeStore::KeyframeStore(KeyframeStore&&) noexcept = default;
+KeyframeStore& KeyframeStore::operator=(KeyframeStore&&) noexcept = default;
+KeyframeStore::~KeyframeStore() = default;
+
+KeyframeStore::Impl& KeyframeStore::impl() const {
+  if (!impl_) throw std::logic_error("use of a moved-from KeyframeStore");
+  return *impl_;
+}
+
+const std::string& KeyframeStore::path() const {
+  return impl().path;
+}
+
+bool KeyframeStore::insert_keyframe(const mapping::Keyframe& keyframe) {
+  Impl& im = impl();
+  im.require_writable("insert_keyframe");
+  return im.insert(keyframe);
+}
+
+std::size_t KeyframeStore::insert_keyframes(
+    const std::vector<const mapping::Keyframe*>& keyframes) {
+  Impl& im = impl();
+  im.require_writable("insert_keyframes");
+  if (keyframes.empty()) return 0;
+  Transaction tx(im.db.get(), im.path);
+  std::size_t inserted = 0;
+  for (std::size_t i = 0; i < keyframes.size(); ++i) {
+    if (keyframes[i] == nullptr) {
+      throw StoreError(im.path, "insert_keyframes: null keyframe at index " + std::to_string(i));
+    }
+    if (im.insert(*keyframes[i])) ++inserted;
+  }
+  tx.commit();
+  return inserted;
+}
+
+std::vector<mapping::Keyframe> KeyframeStore::load_keyframes(
+    const RegularizerConfig& regularizer) const {
+  Impl& im = impl();
+  // The index on (stamp_ns, stream, id) gives the canonical order: SQLite compares TEXT with
+  // memcmp, as std::string does, and ids are stored non-negative.
+  Statement s(im.db.get(), im.path,
+              "SELECT stream, id, stamp_ns, voxel_size, pose, covariance, distributions "
+              "FROM keyframes ORDER BY stamp_ns, stream, id");
+  std::vector<mapping::Keyframe> out;
+  while (s.step("cannot read the keyframes")) {
+    mapping::Keyframe kf;
+    sqlite3_stmt* row = s.get();
+    try {
+      kf.key.stream = column_text(row, 0, "stream");
+      kf.key.id = column_id(row, 1, "id");
+      kf.stamp_ns = column_int(row, 2, "stamp_ns");
+      kf.voxel_size = column_real(row, 3, "voxel_size");
+      const auto pose = column_blob(row, 4, "pose");
+      kf.odom_pose = decode_pose(pose.first, pose.second);
+      const auto covariance = column_blob(row, 5, "covariance");
+      kf.covariance = decode_matrix6(covariance.first, covariance.second);
+      const auto distributions = column_blob(row, 6, "distributions");
+      kf.distributions =
+          decode_distributions(distributions.first, distributions.second, regularizer);
+    } catch (const std::invalid_argument& e) {
+      throw StoreError(im.path, "corrupt keyframe row " + describe(kf.key) + ": " + e.what());
+    }
+    out.push_back(std::move(kf));
+  }
+  return out;
+}
+
+std::size_t KeyframeStore::keyframe_count() const {
+  Impl& im = impl();
+  ResetOnExit reset{*im.count};
+  im.count->step("cannot count the keyframes");
+  return static_cast<std::size_t>(sqlite3_column_int64(im.count->get(), 0));
+}
+
+bool KeyframeStore::contains(const mapping::KeyframeKey& key) const {
+  Impl& im = impl();
+  if (key.id > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) return false;
+  ResetOnExit reset{*im.contains};
+  im.contains->bind_text(1, key.stream);
+  im.contains->bind(2, static_cast<std::int64_t>(key.id));
+  return im.contains->step("cannot look up keyframe " + describe(key));
+}
+
+void KeyframeStore::replace_loop_edges(const std::vector<mapping::LoopEdge>& edges) {
+  Impl& im = impl();
+  im.require_writable("replace_loop_edges");
+  Transaction tx(im.db.get(), im.path);
+  exec(im.db.get(), im.path, "DELETE FROM loop_edges");
+  Statement s(im.db.get(), im.path,
+              "INSERT INTO loop_edges (from_stream, from_id, to_stream, to_id, fitness, rmse, "
+              "relative, information) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)");
+  for (const mapping::LoopEdge& e : edges) {
+    const std::string what = "cannot store loop edge " + describe(e.from) + " -> " + describe(e.to);
+    for (const mapping::KeyframeKey* key : {&e.from, &e.to}) {
+      if (key->id > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
+        throw StoreError(im.path, what + ": id exceeds the largest storable id 2^63-1");
+      }
+    }
+    const std::string relative = encode_pose(e.relative);
+    const std::string information = encode_matrix6(e.information);
+    ResetOnExit reset{s};
+    s.bind_text(1, e.from.stream);
+    s.bind(2, static_cast<std::int64_t>(e.from.id));
+    s.bind_text(3, e.to.stream);
+    s.bind(4, static_cast<std::int64_t>(e.to.id));
+    s.bind(5, e.fitness);
+    s.bind(6, e.rmse);
+    s.bind_blob(7, relative);
+    s.bind_blob(8, information);
+    if (sqlite3_step(s.get()) != SQLITE_DONE) {
+      if (sqlite3_extended_errcode(im.db.get()) == SQLITE_CONSTRAINT_PRIMARYKEY) {
+        throw StoreError(im.path, what + ": the edge is given twice");
+      }
+      throw_sqlite(im.db.get(), im.path, what);
+    }
+  }
+  tx.commit();
+}
+
+std::vector<mapping::LoopEdge> KeyframeStore::load_loop_edges() const {
+  Impl& im = impl();
+  Statement s(im.db.get(), im.path,
+              "SELECT from_stream, from_id, to_stream, to_id, fitness, rmse, relative, "
+              "information FROM loop_edges ORDER BY rowid");
+  std::vector<mapping::LoopEdge> out;
+  while (s.step("cannot read the loop edges")) {
+    mapping::LoopEdge e;
+    sqlite3_stmt* row = s.get();
+    try {
+      e.from.stream = column_text(row, 0, "from_stream");
+      e.from.id = column_id(row, 1, "from_id");
+      e.to.stream = column_text(row, 2, "to_stream");
+      e.to.id = column_id(row, 3, "to_id");
+      e.fitness = column_real(row, 4, "fitness");
+      e.rmse = column_real(row, 5, "rmse");
+      const auto relative = column_blob(row, 6, "relative");
+      e.relative = decode_pose(relative.first, relative.second);
+      const auto information = column_blob(row, 7, "information");
+      e.information = decode_matrix6(information.first, information.second);
+    } catch (const std::invalid_argument& ex) {
+      throw StoreError(im.path, "corrupt loop edge row " + describe(e.from) + " -> " +
+                                    describe(e.to) + ": " + ex.what());
+    }
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
+void KeyframeStore::replace_corrected_poses(const std::vector<CorrectedPose>& poses) {
+  Impl& im = impl();
+  im.require_writable("replace_corrected_poses");
+  Transaction tx(im.db.get(), im.path);
+  exec(im.db.get(), im.path, "DELETE FROM corrected_poses");
+  Statement s(im.db.get(), im.path,
+              "INSERT INTO corrected_poses (stream, id, frame, pose) VALUES (?1, ?2, ?3, ?4)");
+  for (const CorrectedPose& p : poses) {
+    const std::string what = "cannot store the corrected pose of " + describe(p.key);
+    if (p.key.id > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
+      throw StoreError(im.path, what + ": id exceeds the largest storable id 2^63-1");
+    }
+    if (!p.pose.matrix().allFinite()) throw StoreError(im.path, what + ": non-finite pose");
+    const std::string pose = encode_pose(p.pose);
+    ResetOnExit reset{s};
+    s.bind_text(1, p.key.stream);
+    s.bind(2, static_cast<std::int64_t>(p.key.id));
+    s.bind_text(3, p.frame);
+    s.bind_blob(4, pose);
+    if (sqlite3_step(s.get()) != SQLITE_DONE) {
+      if (sqlite3_extended_errcode(im.db.get()) == SQLITE_CONSTRAINT_PRIMARYKEY) {
+        throw StoreError(im.path, what + ": the keyframe is given twice");
+      }
+      throw_sqlite(im.db.get(), im.path, what);
+    }
+  }
+  tx.commit();
+}
+
+std::vector<CorrectedPose> KeyframeStore::load_corrected_poses() const {
+  Impl& im = impl();
+  Statement s(im.db.get(), im.path,
+              "SELECT stream, id, frame, pose FROM corrected_poses ORDER BY stream, id");
+  std::vector<CorrectedPose> out;
+  while (s.step("cannot read the corrected poses")) {
+    CorrectedPose p;
+    sqlite3_stmt* row = s.get();
+    try {
+      p.key.stream = column_text(row, 0, "stream");
+      p.key.id = column_id(row, 1, "id");
+      p.frame = column_text(row, 2, "frame");
+      const auto pose = column_blob(row, 3, "pose");
+      p.pose = decode_pose(pose.first, pose.second);
+    } catch (const std::invalid_argument& e) {
+      throw StoreError(im.path, "corrupt corrected pose row " + describe(p.key) + ": " + e.what());
+    }
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+}  // namespace litamin2::store
