@@ -18,6 +18,7 @@ MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
   place.read_range("ring_key_candidates", p.ring_key_candidates, 1, 1000);
   place.read_range("max_descriptor_distance", p.max_descriptor_distance, 0.0, 1.0);
   place.read_range("min_travel_gap", p.min_travel_gap, 0.0, 1e6);
+  place.read_range("proximity_radius", p.proximity_radius, 0.0, 1e4);
   place.reject_unknown();
 
   YamlSection verification(root.child("verification"), "verification");
@@ -35,13 +36,13 @@ MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
   PoseGraphConfig& g = config.graph;
   graph.read_range("odometry_translation_sigma_per_m", g.odometry_translation_sigma_per_m, 1e-6,
                    10.0);
-  graph.read_range("odometry_rotation_sigma_deg_per_m", g.odometry_rotation_sigma_deg_per_m,
-                   1e-6, 180.0);
-  graph.read_range("odometry_translation_sigma_min", g.odometry_translation_sigma_min, 1e-6,
-                   100.0);
+  graph.read_range("odometry_rotation_sigma_deg_per_m", g.odometry_rotation_sigma_deg_per_m, 1e-6,
+                   180.0);
+  graph.read_range("odometry_translation_sigma_min", g.odometry_translation_sigma_min, 1e-6, 100.0);
   graph.read_range("odometry_rotation_sigma_min_deg", g.odometry_rotation_sigma_min_deg, 1e-6,
                    180.0);
   graph.read_range("loop_loss_scale", g.loop_loss_scale, 1e-3, 1e3);
+  graph.read_range("loop_consistency_sigmas", g.loop_consistency_sigmas, 0.1, 1e6);
   graph.read_range("max_iterations", g.max_iterations, 1, 10000);
   graph.read_range("threads", g.threads, 1, 256);
   graph.reject_unknown();
@@ -50,6 +51,20 @@ MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
   root.read_range("optimize_every_loops", config.optimize_every_loops, 1, 100000);
   root.reject_unknown();
   return config;
+}
+
+MapperConfig load_mapper_config(const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(path + ": " + e.what());
+  }
+  try {
+    return mapper_config_from_yaml(root["mapper"] ? root["mapper"] : root);
+  } catch (const ConfigError& e) {
+    throw ConfigError(path + ": " + e.what());
+  }
 }
 
 std::string mapper_config_to_yaml(const MapperConfig& c) {
@@ -62,6 +77,7 @@ std::string mapper_config_to_yaml(const MapperConfig& c) {
   out << YAML::Key << "ring_key_candidates" << YAML::Value << c.place.ring_key_candidates;
   out << YAML::Key << "max_descriptor_distance" << YAML::Value << c.place.max_descriptor_distance;
   out << YAML::Key << "min_travel_gap" << YAML::Value << c.place.min_travel_gap;
+  out << YAML::Key << "proximity_radius" << YAML::Value << c.place.proximity_radius;
   out << YAML::EndMap;
   out << YAML::Key << "verification" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "submap_neighbours" << YAML::Value << c.verification.submap_neighbours;
@@ -82,6 +98,7 @@ std::string mapper_config_to_yaml(const MapperConfig& c) {
   out << YAML::Key << "odometry_rotation_sigma_min_deg" << YAML::Value
       << c.graph.odometry_rotation_sigma_min_deg;
   out << YAML::Key << "loop_loss_scale" << YAML::Value << c.graph.loop_loss_scale;
+  out << YAML::Key << "loop_consistency_sigmas" << YAML::Value << c.graph.loop_consistency_sigmas;
   out << YAML::Key << "max_iterations" << YAML::Value << c.graph.max_iterations;
   out << YAML::Key << "threads" << YAML::Value << c.graph.threads;
   out << YAML::EndMap;

@@ -8,6 +8,7 @@
 #include "litamin2/io/kitti_calib.hpp"
 #include "litamin2/io/kitti_sequence.hpp"
 #include "litamin2/io/trajectory.hpp"
+#include "litamin2/mapping/mapper.hpp"
 #include "litamin2/version.hpp"
 #include "odometry/run_stats.hpp"
 
@@ -37,7 +38,69 @@ struct Options {
   double vertical_correction_deg = 0.0;
   std::string frames;
   bool quiet = false;
+  bool loop_closure = false;
+  std::string mapper_config_file;
 };
+
+/// Offline SLAM: the odometry's keyframes fed to the aggregator's mapping back end in
+/// process; every frame's pose is then corrected by its latest keyframe's correction.
+class LoopClosure {
+ public:
+  explicit LoopClosure(const mapping::MapperConfig& config) : mapper_(config) {}
+
+  void add(const Tracker& tracker, const FrameResult& frame, double stamp_s) {
+    if (frame.keyframe) {
+      const auto start = std::chrono::steady_clock::now();
+      mapping::Keyframe kf;
+      kf.key = {"odometry", next_id_};
+      kf.stamp_ns = static_cast<std::int64_t>(std::llround(stamp_s * 1e9));
+      kf.odom_pose = frame.pose;
+      kf.covariance = frame.covariance;
+      kf.voxel_size = tracker.config().voxelizer.voxel_size;
+      kf.distributions = tracker.last_distributions();
+      std::vector<mapping::LoopEdge> loops;
+      mapper_.add_keyframe(std::move(kf), &loops);
+      if (!loops.empty()) mapper_.optimize();
+      ++next_id_;
+      ms_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                 .count();
+    }
+    keyframe_of_frame_.push_back(next_id_ == 0 ? 0 : next_id_ - 1);
+  }
+
+  /// The odometry poses corrected by the optimised keyframes.
+  std::vector<Eigen::Isometry3d> corrected(const std::vector<Eigen::Isometry3d>& odometry) {
+    mapper_.optimize();
+    std::vector<Eigen::Isometry3d> out;
+    out.reserve(odometry.size());
+    for (std::size_t i = 0; i < odometry.size(); ++i) {
+      const auto c = mapper_.correction("odometry", keyframe_of_frame_[i]);
+      out.push_back(c ? c->pose * odometry[i] : odometry[i]);
+    }
+    return out;
+  }
+
+  const mapping::Mapper& mapper() const { return mapper_; }
+  double milliseconds() const { return ms_; }
+
+ private:
+  mapping::Mapper mapper_;
+  std::uint64_t next_id_ = 0;
+  std::vector<std::uint64_t> keyframe_of_frame_;
+  double ms_ = 0.0;
+};
+
+void print_accuracy(const char* label, const std::optional<tools::Accuracy>& acc) {
+  if (!acc) return;
+  if (acc->segments > 0) {
+    std::printf("%sKITTI metric: %.3f %% translation, %.4f deg/100 m rotation (%zu segments)\n",
+                label, acc->translation_percent, acc->rotation_deg_per_100m, acc->segments);
+  } else {
+    std::printf("%sKITTI metric: undefined (trajectory shorter than 100 m)\n", label);
+  }
+  std::printf("%sATE: %.3f m translation RMSE, %.3f deg rotation RMSE\n", label,
+              acc->ate_translation_m, acc->ate_rotation_deg);
+}
 
 /// Parses "A:B" (B exclusive, either side optional) against a sequence of `size` scans.
 std::pair<std::size_t, std::size_t> parse_frames(const std::string& text, std::size_t size) {
@@ -105,6 +168,12 @@ int run(const Options& options) {
   tbb::task_arena arena(threads);
 
   Tracker tracker(config);
+  std::optional<LoopClosure> loop_closure;
+  if (options.loop_closure) {
+    loop_closure.emplace(options.mapper_config_file.empty()
+                             ? mapping::MapperConfig{}
+                             : mapping::load_mapper_config(options.mapper_config_file));
+  }
   tools::RunStats stats;
   std::vector<Eigen::Isometry3d> poses;
   std::vector<io::TimedPose> timed;
@@ -115,8 +184,8 @@ int run(const Options& options) {
     FrameResult frame;
     arena.execute([&] { frame = tracker.process(scan); });
     stats.add(frame);
+    if (loop_closure) loop_closure->add(tracker, frame, sequence.timestamp(i));
     poses.push_back(frame.pose);
-    timed.push_back({sequence.timestamp(i), frame.pose});
     progress.update(i - first + 1,
                     std::to_string(static_cast<int>(stats.frames_per_second())) + " frames/s");
   }
@@ -124,14 +193,29 @@ int run(const Options& options) {
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  io::write_kitti_poses((fs::path(options.output) / "poses_kitti.txt").string(), poses);
-  io::write_tum((fs::path(options.output) / "poses_tum.txt").string(), timed);
-  std::ofstream((fs::path(options.output) / "config.yaml").string())
-      << tracker_config_to_yaml(config);
+  const fs::path out(options.output);
+  std::optional<tools::Accuracy> odometry_acc;
+  if (loop_closure) {
+    // poses_kitti.txt is the SLAM result; the odometry alone is kept beside it.
+    io::write_kitti_poses((out / "poses_odometry_kitti.txt").string(), poses);
+    if (tr) {
+      const auto odometry_cam = io::velo_to_cam_trajectory(poses, *tr);
+      io::write_kitti_poses((out / "poses_odometry_kitti_cam.txt").string(), odometry_cam);
+      odometry_acc = accuracy(sequence, tr, odometry_cam, first);
+    }
+    poses = loop_closure->corrected(poses);
+    std::ofstream(out / "mapper_config.yaml")
+        << mapping::mapper_config_to_yaml(loop_closure->mapper().config());
+  }
+  for (std::size_t i = 0; i < poses.size(); ++i)
+    timed.push_back({sequence.timestamp(first + i), poses[i]});
+  io::write_kitti_poses((out / "poses_kitti.txt").string(), poses);
+  io::write_tum((out / "poses_tum.txt").string(), timed);
+  std::ofstream((out / "config.yaml").string()) << tracker_config_to_yaml(config);
   std::optional<tools::Accuracy> acc;
   if (tr) {
     const auto poses_cam = io::velo_to_cam_trajectory(poses, *tr);
-    io::write_kitti_poses((fs::path(options.output) / "poses_kitti_cam.txt").string(), poses_cam);
+    io::write_kitti_poses((out / "poses_kitti_cam.txt").string(), poses_cam);
     acc = accuracy(sequence, tr, poses_cam, first);
   }
   const std::string mode = config.registration.mode == CostMode::Icp ? "icp" : "icp+cov";
@@ -145,15 +229,17 @@ int run(const Options& options) {
         stats.frames(), mode.c_str(), config.voxelizer.voxel_size, threads,
         stats.frames_per_second(), stats.percentile_ms(50), stats.percentile_ms(99),
         stats.keyframes(), stats.failures());
-    if (acc) {
-      if (acc->segments > 0) {
-        std::printf("KITTI metric: %.3f %% translation, %.4f deg/100 m rotation (%zu segments)\n",
-                    acc->translation_percent, acc->rotation_deg_per_100m, acc->segments);
-      } else {
-        std::printf("KITTI metric: undefined (trajectory shorter than 100 m)\n");
-      }
-      std::printf("ATE: %.3f m translation RMSE, %.3f deg rotation RMSE\n", acc->ate_translation_m,
-                  acc->ate_rotation_deg);
+    if (loop_closure) {
+      const mapping::MapperStats ms = loop_closure->mapper().stats();
+      std::printf(
+          "loop closure: %zu keyframes, %zu candidates, %zu loops verified, %zu rejected, "
+          "%zu optimisations, %.1f s in mapping\n",
+          ms.keyframes, ms.candidates, ms.verified, ms.rejected, ms.optimizations,
+          loop_closure->milliseconds() / 1000.0);
+      print_accuracy("odometry only:     ", odometry_acc);
+      print_accuracy("with loop closure: ", acc);
+    } else {
+      print_accuracy("", acc);
     }
     std::printf("wrote %s/{poses_kitti.txt,poses_tum.txt,config.yaml,stats.json%s}\n",
                 options.output.c_str(), tr ? ",poses_kitti_cam.txt" : "");
@@ -192,6 +278,12 @@ int main(int argc, char** argv) {
       "Rotate KITTI HDL-64 points up by this many degrees (KISS-ICP uses 0.205); off by default");
   app.add_option("--frames", options.frames, "Range A:B of scans (B exclusive)");
   app.add_flag("-q,--quiet", options.quiet, "Print nothing on success");
+  app.add_flag("--loop-closure", options.loop_closure,
+               "Offline SLAM: close loops with the aggregator's mapping back end; poses_kitti.txt "
+               "is then corrected and poses_odometry_kitti.txt holds the odometry alone");
+  app.add_option("--mapper-config", options.mapper_config_file,
+                 "Mapping back-end config YAML (see config/mapper.yaml); with --loop-closure")
+      ->check(CLI::ExistingFile);
   app.set_version_flag("--version", std::string(litamin2::version()));
   try {
     app.parse(argc, argv);

@@ -47,7 +47,8 @@ struct Keyframe {
 /// Canonical processing order of keyframes: by stamp, then stream, then id. The mapper's
 /// result depends only on the set of keyframes when they are given in this order.
 inline bool canonical_before(const Keyframe& a, const Keyframe& b) {
-  return std::tie(a.stamp_ns, a.key.stream, a.key.id) < std::tie(b.stamp_ns, b.key.stream, b.key.id);
+  return std::tie(a.stamp_ns, a.key.stream, a.key.id) <
+         std::tie(b.stamp_ns, b.key.stream, b.key.id);
 }
 
 }  // namespace litamin2::mapping

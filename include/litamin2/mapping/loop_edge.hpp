@@ -16,9 +16,10 @@ struct LoopEdge {
   /// Information (inverse covariance) of the relative pose in (phi, tau) left-update
   /// coordinates of `to`'s pose.
   Matrix6d information = Matrix6d::Identity();
-  /// Fraction of `to`'s distributions with a correspondence within the gate at convergence.
+  /// Fraction of `to`'s non-horizontal distributions within the verification gate of the
+  /// target's surfaces at convergence (loop_verifier.hpp).
   double fitness = 0.0;
-  /// Root mean square Mahalanobis-free point-to-distribution distance at convergence, metres.
+  /// Root mean square of those distances along the normals, metres.
   double rmse = 0.0;
 };
 

@@ -46,7 +46,10 @@ struct MapperStats {
   std::size_t duplicates = 0;
   std::size_t candidates = 0;
   std::size_t verified = 0;
+  /// Candidates rejected by verification or, after optimisation, as inconsistent.
   std::size_t rejected = 0;
+  /// Of those, verified loops the graph could not accommodate.
+  std::size_t inconsistent = 0;
   std::size_t optimizations = 0;
 };
 

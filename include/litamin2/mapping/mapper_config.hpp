@@ -25,6 +25,11 @@ struct PlaceRecognitionConfig {
   /// Keyframes of the same stream closer than this along the trajectory are never loop
   /// candidates (they are neighbours in the odometry chain), metres.
   double min_travel_gap = 50.0;
+  /// Besides the descriptor's candidate, the keyframe of the same group of streams nearest
+  /// to the query's current pose estimate is verified when it is closer than this, metres
+  /// (0 = off): drift is small enough that a revisit is found by position, and the estimate
+  /// gives the registration a starting pose.
+  double proximity_radius = 15.0;
 };
 
 /// Verification of a candidate by LiTAMIN2 registration of the two keyframes' patches
@@ -34,13 +39,14 @@ struct LoopVerificationConfig {
   int submap_neighbours = 3;
   /// Registration robust scale; wider than odometry's, as the initial guess is coarse, metres.
   double sigma_icp = 0.5;
-  /// Correspondence gate for the fitness score, metres.
-  double fitness_distance = 1.0;
-  /// A loop is accepted when at least this fraction of the query's distributions has a
-  /// correspondence within fitness_distance at convergence ...
+  /// Gate of the fitness score: distance along the normal of a query distribution to the
+  /// nearest map distribution's surface, metres.
+  double fitness_distance = 0.3;
+  /// A loop is accepted when at least this fraction of the query's non-horizontal
+  /// distributions lies within fitness_distance of the map's surfaces at convergence ...
   double min_fitness = 0.6;
-  /// ... and the root mean square distance of those correspondences is at most this, metres.
-  double max_rmse = 0.5;
+  /// ... and the root mean square of those distances is at most this, metres.
+  double max_rmse = 0.15;
   /// Standard deviations the loop edge's information is built from: rotation (degrees) ...
   double rotation_sigma_deg = 0.5;
   /// ... and translation (metres).
@@ -57,8 +63,12 @@ struct PoseGraphConfig {
   /// Floors of those standard deviations for keyframes close together.
   double odometry_translation_sigma_min = 0.01;
   double odometry_rotation_sigma_min_deg = 0.01;
-  /// Scale of the robust (Cauchy) loss on loop edges, in standard deviations.
+  /// Scale of the robust (Cauchy) loss on loop edges, in standard deviations. A loop edge is
+  /// first optimised without it (the drift it corrects can be hundreds of standard deviations,
+  /// which the loss would ignore), then checked: if the graph cannot accommodate it within
+  /// loop_consistency_sigmas, it is dropped; else it keeps the robust loss from then on.
   double loop_loss_scale = 1.0;
+  double loop_consistency_sigmas = 3.0;
   /// Solver iteration limit.
   int max_iterations = 50;
   /// Solver threads.
@@ -78,6 +88,9 @@ struct MapperConfig {
 /// Reads a mapper config from a YAML mapping; absent keys keep their defaults, unknown keys
 /// and out-of-range values throw ConfigError naming the key and value.
 MapperConfig mapper_config_from_yaml(const YAML::Node& node);
+/// Reads a YAML file (the whole file, or its `mapper:` section if it has one); errors name the
+/// file.
+MapperConfig load_mapper_config(const std::string& path);
 /// The full config as YAML (every key).
 std::string mapper_config_to_yaml(const MapperConfig& config);
 

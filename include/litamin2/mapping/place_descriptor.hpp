@@ -1,0 +1,45 @@
+#pragma once
+/// Place recognition descriptor of a keyframe, in the spirit of Scan Context (Kim and Kim,
+/// IROS 2018) but computed from the keyframe's distributions instead of its points: a polar
+/// grid of rings (range) by sectors (azimuth) around the sensor, each cell holding the largest
+/// height of the distribution means that fall in it. A yaw of the sensor shifts the grid's
+/// columns, so comparing under every column shift is yaw invariant and gives the yaw.
+
+#include "litamin2/core/distribution.hpp"
+#include "litamin2/mapping/mapper_config.hpp"
+
+#include <vector>
+
+namespace litamin2::mapping {
+
+struct PlaceDescriptor {
+  int rings = 0;
+  int sectors = 0;
+  /// rings x sectors, row-major by ring; 0 marks an empty cell, else height + offset > 0.
+  std::vector<float> cells;
+  /// Per ring, the fraction of occupied sectors: invariant to yaw, used to shortlist.
+  std::vector<float> ring_key;
+};
+
+/// Heights are measured from this far below the sensor, so that every occupied cell (ground
+/// included, about 1.7 m below a car's roof sensor) has a positive value.
+constexpr double kDescriptorHeightOffset = 3.0;
+
+PlaceDescriptor make_place_descriptor(const std::vector<Distribution>& distributions,
+                                      const PlaceRecognitionConfig& config);
+
+struct DescriptorMatch {
+  /// Mean cosine distance of the columns occupied in both (0 same place, 1 unrelated).
+  double distance = 1.0;
+  /// Yaw of the query's sensor in the candidate's sensor frame, radians (from the best
+  /// column shift; resolution 2 pi / sectors).
+  double yaw = 0.0;
+};
+
+/// Compares two descriptors of the same grid under every column shift.
+DescriptorMatch match_descriptors(const PlaceDescriptor& query, const PlaceDescriptor& candidate);
+
+/// Squared Euclidean distance of the ring keys.
+double ring_key_distance(const PlaceDescriptor& a, const PlaceDescriptor& b);
+
+}  // namespace litamin2::mapping

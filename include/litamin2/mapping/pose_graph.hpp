@@ -1,0 +1,42 @@
+#pragma once
+/// Pose-graph optimisation of keyframe poses with Ceres: relative-pose edges weighted by
+/// their standard deviations, a robust (Cauchy) loss on loop edges so that a wrong loop that
+/// passed verification cannot bend the whole graph, and one fixed node per connected part.
+
+#include "litamin2/mapping/mapper_config.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <vector>
+
+namespace litamin2::mapping {
+
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+struct PoseGraphEdge {
+  /// Node indices: the edge measures the pose of `to` in the frame of `from`.
+  int from = 0;
+  int to = 0;
+  Eigen::Isometry3d relative = Eigen::Isometry3d::Identity();
+  /// Standard deviations of the translation (x, y, z, metres) then rotation (about x, y, z,
+  /// radians) of the measurement, in `from`'s frame.
+  Vector6d sigma = Vector6d::Ones();
+  /// Robust loss (loop edges) or plain least squares (odometry edges).
+  bool robust = false;
+};
+
+struct PoseGraphResult {
+  int iterations = 0;
+  double initial_cost = 0.0;
+  double final_cost = 0.0;
+  bool usable = false;
+};
+
+/// Optimises `poses` in place. Nodes with fixed[i] keep their pose; every connected part of
+/// the graph needs one.
+PoseGraphResult optimize_pose_graph(std::vector<Eigen::Isometry3d>& poses,
+                                    const std::vector<bool>& fixed,
+                                    const std::vector<PoseGraphEdge>& edges,
+                                    const PoseGraphConfig& config);
+
+}  // namespace litamin2::mapping

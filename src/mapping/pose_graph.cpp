@@ -1,0 +1,95 @@
+#include "litamin2/mapping/pose_graph.hpp"
+
+#include <ceres/ceres.h>
+
+#include <memory>
+
+namespace litamin2::mapping {
+namespace {
+
+/// Residual of one relative-pose measurement T_ab between poses (q_a, t_a) and (q_b, t_b), as
+/// in Ceres' pose_graph_3d example: the translation error in a's frame and twice the vector
+/// part of the rotation error quaternion, each divided by its standard deviation.
+struct RelativePoseError {
+  RelativePoseError(const Eigen::Isometry3d& measured, const Vector6d& sigma)
+      : q_ab(measured.rotation()), t_ab(measured.translation()), inv_sigma(sigma.cwiseInverse()) {}
+
+  template <class T>
+  bool operator()(const T* qa_ptr, const T* ta_ptr, const T* qb_ptr, const T* tb_ptr,
+                  T* residual_ptr) const {
+    Eigen::Map<const Eigen::Quaternion<T>> qa(qa_ptr), qb(qb_ptr);
+    Eigen::Map<const Eigen::Matrix<T, 3, 1>> ta(ta_ptr), tb(tb_ptr);
+    const Eigen::Quaternion<T> qa_inv = qa.conjugate();
+    const Eigen::Quaternion<T> q_ab_est = qa_inv * qb;
+    const Eigen::Matrix<T, 3, 1> t_ab_est = qa_inv * (tb - ta);
+    const Eigen::Quaternion<T> dq = q_ab.template cast<T>().conjugate() * q_ab_est;
+    Eigen::Map<Eigen::Matrix<T, 6, 1>> r(residual_ptr);
+    r.template head<3>() = t_ab_est - t_ab.template cast<T>();
+    r.template tail<3>() = T(2.0) * dq.vec();
+    for (int i = 0; i < 6; ++i) r(i) *= T(inv_sigma(i));
+    return true;
+  }
+
+  Eigen::Quaterniond q_ab;
+  Eigen::Vector3d t_ab;
+  Vector6d inv_sigma;
+};
+
+}  // namespace
+
+PoseGraphResult optimize_pose_graph(std::vector<Eigen::Isometry3d>& poses,
+                                    const std::vector<bool>& fixed,
+                                    const std::vector<PoseGraphEdge>& edges,
+                                    const PoseGraphConfig& config) {
+  const std::size_t n = poses.size();
+  std::vector<Eigen::Quaterniond> q(n);
+  std::vector<Eigen::Vector3d> t(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    q[i] = Eigen::Quaterniond(poses[i].rotation()).normalized();
+    t[i] = poses[i].translation();
+  }
+
+  ceres::Problem::Options problem_options;
+  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  ceres::EigenQuaternionManifold quaternion_manifold;
+  for (const PoseGraphEdge& e : edges) {
+    auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 6, 4, 3, 4, 3>(
+        new RelativePoseError(e.relative, e.sigma));
+    ceres::LossFunction* loss = e.robust ? new ceres::CauchyLoss(config.loop_loss_scale) : nullptr;
+    problem.AddResidualBlock(cost, loss, q[e.from].coeffs().data(), t[e.from].data(),
+                             q[e.to].coeffs().data(), t[e.to].data());
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!problem.HasParameterBlock(q[i].coeffs().data())) continue;
+    problem.SetManifold(q[i].coeffs().data(), &quaternion_manifold);
+    if (fixed[i]) {
+      problem.SetParameterBlockConstant(q[i].coeffs().data());
+      problem.SetParameterBlockConstant(t[i].data());
+    }
+  }
+
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  options.max_num_iterations = config.max_iterations;
+  options.num_threads = config.threads;
+  options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+
+  PoseGraphResult result;
+  result.iterations = static_cast<int>(summary.iterations.size());
+  result.initial_cost = summary.initial_cost;
+  result.final_cost = summary.final_cost;
+  result.usable = summary.IsSolutionUsable();
+  if (!result.usable) return result;
+  for (std::size_t i = 0; i < n; ++i) {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = q[i].normalized().toRotationMatrix();
+    pose.translation() = t[i];
+    poses[i] = pose;
+  }
+  return result;
+}
+
+}  // namespace litamin2::mapping

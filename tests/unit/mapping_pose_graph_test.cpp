@@ -1,0 +1,115 @@
+// Pose-graph optimisation: the residual's conventions (a wrong sign or frame moves the nodes
+// the wrong way), a drifting loop corrected by one loop edge, a wrong loop edge held off by the
+// robust loss.
+
+#include "litamin2/mapping/pose_graph.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace litamin2::mapping;
+
+namespace {
+
+Eigen::Isometry3d pose_of(double x, double y, double z, double roll, double pitch, double yaw) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                   Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                   Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                      .toRotationMatrix();
+  pose.translation() = Eigen::Vector3d(x, y, z);
+  return pose;
+}
+
+double rotation_error_deg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return Eigen::AngleAxisd(a.rotation().transpose() * b.rotation()).angle() * 180.0 / M_PI;
+}
+
+}  // namespace
+
+TEST(MappingPoseGraph, OneEdgePlacesTheFreeNodeExactly) {
+  const Eigen::Isometry3d fixed_pose = pose_of(1.0, -2.0, 0.5, 0.1, -0.2, 0.7);
+  const Eigen::Isometry3d relative = pose_of(3.0, 1.0, -0.2, 0.05, 0.1, -0.4);
+  std::vector<Eigen::Isometry3d> poses = {fixed_pose, Eigen::Isometry3d::Identity()};
+  PoseGraphEdge edge;
+  edge.from = 0;
+  edge.to = 1;
+  edge.relative = relative;
+  const PoseGraphResult result = optimize_pose_graph(poses, {true, false}, {edge}, {});
+  ASSERT_TRUE(result.usable);
+  EXPECT_TRUE(poses[0].isApprox(fixed_pose, 1e-12));
+  const Eigen::Isometry3d expected = fixed_pose * relative;
+  EXPECT_LT((poses[1].translation() - expected.translation()).norm(), 1e-6);
+  EXPECT_LT(rotation_error_deg(poses[1], expected), 1e-5);
+}
+
+TEST(MappingPoseGraph, LoopEdgeRemovesAccumulatedDrift) {
+  // A square of 40 poses 1 m apart; the odometry turns 0.3 degrees too little per corner step.
+  const int n = 40;
+  std::vector<Eigen::Isometry3d> truth;
+  for (int i = 0; i < n; ++i) {
+    const int side = i / 10, step = i % 10;
+    Eigen::Isometry3d corner = pose_of(0, 0, 0, 0, 0, 0);
+    for (int s = 0; s < side; ++s) corner = corner * pose_of(10.0, 0, 0, 0, 0, M_PI / 2);
+    truth.push_back(corner * pose_of(step, 0, 0, 0, 0, 0));
+  }
+  std::vector<PoseGraphEdge> edges;
+  std::vector<Eigen::Isometry3d> poses = {truth[0]};
+  for (int i = 1; i < n; ++i) {
+    PoseGraphEdge e;
+    e.from = i - 1;
+    e.to = i;
+    const Eigen::Isometry3d exact = truth[i - 1].inverse() * truth[i];
+    e.relative = exact * pose_of(0.01, 0, 0, 0, 0, -0.003);
+    e.sigma << 0.05, 0.05, 0.05, 0.005, 0.005, 0.005;
+    edges.push_back(e);
+    poses.push_back(poses.back() * e.relative);
+  }
+  const double drift_before = (poses[n - 1].translation() - truth[n - 1].translation()).norm();
+  PoseGraphEdge loop;
+  loop.from = 0;
+  loop.to = n - 1;
+  loop.relative = truth[0].inverse() * truth[n - 1];
+  loop.sigma << 0.01, 0.01, 0.01, 0.001, 0.001, 0.001;
+  loop.robust = false;  // the mapper adds a new loop without the robust loss (mapper.cpp)
+  edges.push_back(loop);
+  std::vector<bool> fixed(n, false);
+  fixed[0] = true;
+  ASSERT_TRUE(optimize_pose_graph(poses, fixed, edges, {}).usable);
+  const double drift_after = (poses[n - 1].translation() - truth[n - 1].translation()).norm();
+  EXPECT_GT(drift_before, 0.5);
+  EXPECT_LT(drift_after, 0.05 * drift_before);
+  double worst = 0.0;
+  for (int i = 0; i < n; ++i)
+    worst = std::max(worst, (poses[i].translation() - truth[i].translation()).norm());
+  EXPECT_LT(worst, 0.5);
+}
+
+TEST(MappingPoseGraph, RobustLossLimitsAWrongLoop) {
+  // A straight chain with exact odometry and one wrong loop edge claiming 5 m of error.
+  const int n = 20;
+  std::vector<Eigen::Isometry3d> poses;
+  std::vector<PoseGraphEdge> edges;
+  for (int i = 0; i < n; ++i) poses.push_back(pose_of(i, 0, 0, 0, 0, 0));
+  for (int i = 1; i < n; ++i) {
+    PoseGraphEdge e;
+    e.from = i - 1;
+    e.to = i;
+    e.relative = pose_of(1, 0, 0, 0, 0, 0);
+    e.sigma << 0.01, 0.01, 0.01, 0.001, 0.001, 0.001;
+    edges.push_back(e);
+  }
+  PoseGraphEdge wrong;
+  wrong.from = 0;
+  wrong.to = n - 1;
+  wrong.relative = pose_of(n - 1 + 5.0, 0, 0, 0, 0, 0);
+  wrong.sigma << 0.1, 0.1, 0.1, 0.01, 0.01, 0.01;
+  wrong.robust = true;
+  edges.push_back(wrong);
+  std::vector<bool> fixed(n, false);
+  fixed[0] = true;
+  ASSERT_TRUE(optimize_pose_graph(poses, fixed, edges, {}).usable);
+  // Without the robust loss the end would move by about 5 m * 0.1^-2 / (0.1^-2 + ...) ~ 1 m.
+  EXPECT_LT(std::abs(poses[n - 1].translation().x() - (n - 1)), 0.2);
+}
