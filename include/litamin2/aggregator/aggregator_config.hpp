@@ -1,0 +1,73 @@
+#pragma once
+/// The aggregator's configuration (litamin2-aggregator.yaml): DDS participant and topics, the
+/// durable store, the mapper, ingest batching, publication policy, watchdog and logging, with
+/// YAML load and validation.
+
+#include "litamin2/daemon/daemon_config.hpp"
+#include "litamin2/mapping/mapper_config.hpp"
+
+#include <string>
+
+namespace YAML {
+class Node;
+}
+
+namespace litamin2::aggregator {
+
+struct TopicsConfig {
+  /// Input: the daemons' map patches (litamin2/msg/MapPatch).
+  std::string map_patches = "rt/litamin2/map_patches";
+  /// Output: corrected keyframe poses, one instance per stream (litamin2/msg/KeyframePoses).
+  std::string keyframe_poses = "rt/litamin2/keyframe_poses";
+  /// Output: the global map's summary (litamin2/msg/MapSummary).
+  std::string map_summary = "rt/litamin2/map_summary";
+  /// Output: the aggregator's status (diagnostic_msgs/DiagnosticArray).
+  std::string status = "rt/litamin2/aggregator/status";
+};
+
+struct StoreConfig {
+  /// The SQLite store (created if missing; a file that is not a keyframe store is refused).
+  std::string path = "/var/lib/litamin2/aggregator.db";
+  /// fsync at every commit (survives power loss; kill -9 is survived either way).
+  bool synchronous_full = false;
+};
+
+struct IngestConfig {
+  /// Patches queued between the DDS listener and the mapping thread; when full the listener
+  /// waits (reliable DDS then holds the writers back) instead of dropping.
+  int queue_capacity = 1024;
+  /// At most this many patches are committed to the store in one transaction.
+  int max_batch = 256;
+};
+
+struct PublishConfig {
+  /// Corrected poses of streams that changed are published at most this often, seconds.
+  double poses_period_s = 1.0;
+  /// The map summary is rebuilt and published at most this often (when changed), seconds.
+  double summary_period_s = 10.0;
+  /// Voxel means listed in the summary at most (decimated evenly); 0 = counts only.
+  int summary_max_means = 10000;
+  /// Status period, seconds.
+  double status_period_s = 1.0;
+};
+
+struct AggregatorConfig {
+  daemon::DdsConfig dds;
+  TopicsConfig topics;
+  StoreConfig store;
+  IngestConfig ingest;
+  PublishConfig publish;
+  mapping::MapperConfig mapper;
+  daemon::WatchdogConfig watchdog;
+  /// spdlog level: trace, debug, info, warn, error, critical, off.
+  std::string log_level = "info";
+};
+
+/// Reads an aggregator config from a YAML mapping (an empty or null node gives the defaults).
+/// Unknown keys and values of the wrong type or out of range throw ConfigError naming the key
+/// (as a dotted path) and the value.
+AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node);
+/// Reads a YAML file; error messages start with the file name.
+AggregatorConfig load_aggregator_config(const std::string& path);
+
+}  // namespace litamin2::aggregator

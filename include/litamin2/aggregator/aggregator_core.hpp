@@ -1,0 +1,72 @@
+#pragma once
+/// The aggregator's state without threads or transport: the durable store and the mapper.
+///
+/// Opening recovers: every stored keyframe is loaded (in canonical order) into a new mapper, so
+/// the mapper's state after a restart (even after kill -9) depends only on the set of stored
+/// keyframes. ingest() commits new keyframes to the store first and only then adds them to the
+/// mapper: whatever the mapper knows is durable. Duplicates (a key already known, or twice in
+/// one batch) are counted and ignored: the first patch of a key wins.
+///
+/// Not thread-safe: one owner (the mapping thread; export runs it on its own).
+
+#include "litamin2/core/covariance_regularizer.hpp"
+#include "litamin2/mapping/mapper.hpp"
+#include "litamin2/store/keyframe_store.hpp"
+
+#include <cstddef>
+#include <functional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace litamin2::aggregator {
+
+struct IngestResult {
+  /// Keyframes new to the store and the mapper.
+  std::size_t added = 0;
+  std::size_t duplicates = 0;
+  /// Loop edges verified while adding.
+  std::size_t new_loops = 0;
+  /// Streams that got a new keyframe, and the new keys.
+  std::set<std::string> streams;
+  std::vector<mapping::KeyframeKey> keys;
+  mapping::OptimizeSummary optimization;
+  double store_ms = 0.0;
+  double mapper_ms = 0.0;
+};
+
+class AggregatorCore {
+ public:
+  /// Called during recovery with (keyframes added, keyframes in total).
+  using Progress = std::function<void(std::size_t, std::size_t)>;
+
+  /// Opens the store at `store_path` (`mode`; StoreError if it is not a keyframe store),
+  /// rebuilds the mapper from it and optimises. Throws ConfigError for an invalid mapper config.
+  AggregatorCore(const std::string& store_path, store::OpenMode mode,
+                 const mapping::MapperConfig& mapper_config,
+                 const store::StoreOptions& store_options = {}, const Progress& progress = {});
+
+  /// Commits the keyframes of `batch` not known yet to the store (one transaction), then adds
+  /// them to the mapper in canonical order, optimises when loops were found and stores the new
+  /// loop edges and corrected poses. `batch` is consumed.
+  IngestResult ingest(std::vector<mapping::Keyframe>& batch);
+
+  const mapping::Mapper& mapper() const { return mapper_; }
+  const store::KeyframeStore& store() const { return store_; }
+  std::size_t recovered() const { return recovered_; }
+  std::size_t duplicates() const { return duplicates_; }
+
+  /// What the store does to a distribution's covariance on load, applied to freshly received
+  /// keyframes so that a live mapper sees exactly what a recovered one would.
+  static const RegularizerConfig& regularizer();
+
+ private:
+  void save_graph();
+
+  store::KeyframeStore store_;
+  mapping::Mapper mapper_;
+  std::size_t recovered_ = 0;
+  std::size_t duplicates_ = 0;
+};
+
+}  // namespace litamin2::aggregator

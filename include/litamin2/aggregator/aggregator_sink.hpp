@@ -1,0 +1,16 @@
+#pragma once
+/// Where the mapping thread's results go: the DDS writers in the aggregator, a recorder in
+/// tests. Called from the mapping thread only.
+
+#include "litamin2/aggregator/aggregator_outputs.hpp"
+
+namespace litamin2::aggregator {
+
+class AggregatorSink {
+ public:
+  virtual ~AggregatorSink() = default;
+  virtual void publish_poses(const StreamPoses& poses) = 0;
+  virtual void publish_summary(const MapSummary& summary) = 0;
+};
+
+}  // namespace litamin2::aggregator

@@ -1,0 +1,43 @@
+#pragma once
+/// The aggregator's outputs as DDS messages: KeyframePoses per stream, MapSummary, and the
+/// status DiagnosticArray (one entry for the aggregator, named "litamin2-aggregator", and one
+/// per stream, named "litamin2-aggregator: <stream>").
+
+#include "diagnostic_msgs/msg/DiagnosticArray.h"
+#include "litamin2/aggregator/aggregator_outputs.hpp"
+#include "litamin2/aggregator/mapping_worker.hpp"
+#include "litamin2/msg/KeyframePoses.h"
+#include "litamin2/msg/MapSummary.h"
+
+#include <cstdint>
+#include <string>
+
+namespace litamin2::aggregator {
+
+/// frame_id of poses in the shared map frame.
+inline constexpr const char* kMapFrame = "map";
+
+litamin2::msg::KeyframePoses to_keyframe_poses_msg(const StreamPoses& poses);
+litamin2::msg::MapSummary to_map_summary_msg(const MapSummary& summary, double stamp_seconds);
+
+/// What the status reports besides the mapping thread's counters.
+struct IngestCounters {
+  std::uint64_t received = 0;
+  std::uint64_t rejected = 0;
+  std::uint64_t samples_lost = 0;
+  int writers = 0;
+  std::size_t queued = 0;
+  std::size_t queue_capacity = 0;
+  std::size_t queue_high_water = 0;
+  std::string store_path;
+};
+
+/// level: 0 OK, 1 WARN (patches rejected or lost since the last status), 2 ERROR (store failed
+/// or mapping stalled), with `message`.
+diagnostic_msgs::msg::DiagnosticArray make_aggregator_status(const WorkerStatus& worker,
+                                                             const IngestCounters& ingest,
+                                                             std::uint8_t level,
+                                                             const std::string& message,
+                                                             double stamp_seconds);
+
+}  // namespace litamin2::aggregator

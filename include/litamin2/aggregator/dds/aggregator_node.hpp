@@ -1,0 +1,78 @@
+#pragma once
+/// The aggregator's DDS side: one participant; a reader of the map patches (reliable,
+/// transient-local, keep-all) whose listener only converts and enqueues; writers of the
+/// corrected keyframe poses (one instance per stream, reliable, transient-local), of the map
+/// summary (reliable, transient-local) and of the status (DiagnosticArray); the mapping thread
+/// in between. The store is opened (and the mapper rebuilt from it) before DDS starts, so a
+/// store that cannot be opened fails the start with nothing published.
+
+#include "litamin2/aggregator/aggregator_config.hpp"
+#include "litamin2/aggregator/aggregator_core.hpp"
+#include "litamin2/aggregator/dds/patch_listener.hpp"
+#include "litamin2/aggregator/mapping_worker.hpp"
+#include "litamin2/aggregator/patch_queue.hpp"
+#include "litamin2/dds/participant_factory.hpp"
+
+#include <fastdds/dds/topic/TypeSupport.hpp>
+
+#include <chrono>
+#include <memory>
+#include <string>
+
+namespace eprosima::fastdds::dds {
+class Publisher;
+class Subscriber;
+class DataReader;
+class DataWriter;
+}  // namespace eprosima::fastdds::dds
+
+namespace litamin2::aggregator {
+
+class AggregatorNode {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  /// Opens the store (StoreError), rebuilds the mapper (`progress` reports it), creates the DDS
+  /// entities (std::runtime_error if DDS refuses), publishes the recovered poses and starts
+  /// reading patches.
+  AggregatorNode(AggregatorConfig config, const AggregatorCore::Progress& progress = {});
+  ~AggregatorNode();
+  AggregatorNode(const AggregatorNode&) = delete;
+  AggregatorNode& operator=(const AggregatorNode&) = delete;
+
+  /// Main-loop work: the status when due.
+  void poll(Clock::time_point now = Clock::now());
+  /// The mapping thread is not stalled and the store works.
+  bool healthy(Clock::time_point now = Clock::now()) const;
+  /// The store failed: exit (non-zero) so that the service is restarted.
+  bool failed() const;
+  /// Stops reading, commits and maps what is queued, publishes the last outputs. Idempotent.
+  void shutdown();
+
+  WorkerStatus status() const;
+  /// One line for logs and sd_notify STATUS=.
+  std::string summary() const;
+
+ private:
+  class Sink;
+  void publish_status(Clock::time_point now);
+
+  AggregatorConfig config_;
+  std::unique_ptr<AggregatorCore> core_;
+  PatchQueue queue_;
+  PatchListener listener_;
+  dds::ParticipantPtr participant_;
+  eprosima::fastdds::dds::TypeSupport patch_type_, poses_type_, summary_type_, status_type_;
+  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
+  eprosima::fastdds::dds::DataReader* reader_ = nullptr;
+  eprosima::fastdds::dds::DataWriter* status_writer_ = nullptr;
+  std::unique_ptr<Sink> sink_;
+  std::unique_ptr<MappingWorker> worker_;
+  Clock::time_point next_status_{};
+  std::uint64_t reported_rejected_ = 0;
+  std::uint64_t reported_lost_ = 0;
+  bool stopped_ = false;
+};
+
+}  // namespace litamin2::aggregator

@@ -1,0 +1,41 @@
+#pragma once
+/// The reader listener of rt/litamin2/map_patches: converts each MapPatch to a keyframe
+/// (dds::from_map_patch) and pushes it onto the PatchQueue; nothing else runs on the DDS
+/// thread. Invalid patches are counted and logged at most once per second.
+
+#include "litamin2/aggregator/patch_queue.hpp"
+#include "litamin2/daemon/log_rate_limiter.hpp"
+
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+
+#include <atomic>
+#include <cstdint>
+
+namespace litamin2::aggregator {
+
+class PatchListener : public eprosima::fastdds::dds::DataReaderListener {
+ public:
+  explicit PatchListener(PatchQueue& queue) : queue_(queue) {}
+
+  void on_data_available(eprosima::fastdds::dds::DataReader* reader) override;
+  void on_subscription_matched(
+      eprosima::fastdds::dds::DataReader* reader,
+      const eprosima::fastdds::dds::SubscriptionMatchedStatus& info) override;
+  void on_sample_lost(eprosima::fastdds::dds::DataReader* reader,
+                      const eprosima::fastdds::dds::SampleLostStatus& status) override;
+
+  std::uint64_t received() const { return received_; }
+  std::uint64_t rejected() const { return rejected_; }
+  std::uint64_t samples_lost() const { return samples_lost_; }
+  int writers() const { return writers_; }
+
+ private:
+  PatchQueue& queue_;
+  daemon::LogRateLimiter bad_patch_log_;
+  std::atomic<std::uint64_t> received_{0};
+  std::atomic<std::uint64_t> rejected_{0};
+  std::atomic<std::uint64_t> samples_lost_{0};
+  std::atomic<int> writers_{0};
+};
+
+}  // namespace litamin2::aggregator

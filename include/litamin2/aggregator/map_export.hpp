@@ -1,0 +1,52 @@
+#pragma once
+/// `litamin2-aggregator export`: the map and trajectories of a store, rebuilt offline.
+///
+/// The store is opened read-only (never modified), every keyframe is loaded in canonical order
+/// into a new mapper (exactly as the aggregator does at start), and the results are written:
+///  - the global map as a binary PLY, one vertex per distribution with float properties
+///    x y z (mean), c00 c01 c02 c11 c12 c22 (covariance), nx ny nz (unit normal: the
+///    covariance's least eigenvector, nz >= 0) and count;
+///  - per stream `<stream>_kitti.txt` (KITTI, 12 numbers per line) and `<stream>_tum.txt`
+///    (TUM, stamp in seconds) of the corrected keyframe poses, by keyframe id, in the frame of
+///    the stream's anchor (the map frame for streams joined to the map); '/' in a stream id
+///    becomes "__" in file names (stream ids never contain "__").
+
+#include "litamin2/aggregator/aggregator_core.hpp"
+#include "litamin2/aggregator/aggregator_outputs.hpp"
+#include "litamin2/mapping/mapper_config.hpp"
+
+#include <string>
+#include <vector>
+
+namespace litamin2::aggregator {
+
+struct ExportOptions {
+  std::string store;
+  /// Empty: no map file.
+  std::string map_ply;
+  /// Empty: no trajectories.
+  std::string trajectories_dir;
+  mapping::MapperConfig mapper;
+  AggregatorCore::Progress progress;
+};
+
+struct ExportResult {
+  std::size_t keyframes = 0;
+  std::size_t streams = 0;
+  std::size_t loops = 0;
+  std::size_t voxels = 0;
+  std::vector<std::string> files;
+};
+
+/// Throws store::StoreError (naming the file) if the store cannot be read, io::IoError if an
+/// output cannot be written.
+ExportResult export_store(const ExportOptions& options);
+
+/// The PLY described above.
+void write_map_ply(const std::string& path, const std::vector<Distribution>& map);
+/// File name stem of a stream ("fleet/car1" -> "fleet__car1").
+std::string stream_file_stem(const std::string& stream);
+/// Writes DIR/<stem>_kitti.txt and DIR/<stem>_tum.txt (creating DIR); returns the paths.
+std::vector<std::string> write_trajectories(const std::string& dir, const StreamPoses& poses);
+
+}  // namespace litamin2::aggregator

@@ -1,0 +1,93 @@
+#pragma once
+/// The aggregator's mapping thread: takes batches of keyframes off the PatchQueue, ingests them
+/// (store commit, then mapper), and publishes the corrected poses of the streams that changed
+/// (all streams after an optimisation) and the map summary, each at most at its configured
+/// period. Owns nothing but the thread: the core, queue and sink are the caller's.
+
+#include "litamin2/aggregator/aggregator_config.hpp"
+#include "litamin2/aggregator/aggregator_core.hpp"
+#include "litamin2/aggregator/aggregator_sink.hpp"
+#include "litamin2/aggregator/patch_queue.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <string>
+#include <thread>
+
+namespace litamin2::aggregator {
+
+/// One stream as the status reports it.
+struct StreamCounts {
+  std::size_t keyframes = 0;
+  /// Highest keyframe id received; missing = max_id + 1 - keyframes (gaps, late patches).
+  std::uint64_t max_id = 0;
+};
+
+/// A consistent snapshot of the mapping thread's counters.
+struct WorkerStatus {
+  std::size_t keyframes = 0;
+  std::size_t recovered = 0;
+  std::size_t duplicates = 0;
+  std::size_t loops = 0;
+  std::size_t optimizations = 0;
+  std::size_t batches = 0;
+  double last_store_ms = 0.0;
+  double last_mapper_ms = 0.0;
+  double last_optimize_ms = 0.0;
+  std::map<std::string, StreamCounts> streams;
+  /// The store failed (disk full, I/O error): the process must exit and be restarted.
+  std::string error;
+};
+
+class MappingWorker {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  MappingWorker(AggregatorCore& core, PatchQueue& queue, AggregatorSink& sink,
+                const AggregatorConfig& config);
+  /// Stops (see stop()) and joins.
+  ~MappingWorker();
+  MappingWorker(const MappingWorker&) = delete;
+  MappingWorker& operator=(const MappingWorker&) = delete;
+
+  /// Publishes every stream's poses once (the recovered state), then starts the thread.
+  void start();
+  /// Closes the queue, ingests what is left in it, publishes pending outputs and joins.
+  void stop();
+
+  WorkerStatus status() const;
+  /// No batch has been in processing for longer than `stall_timeout` and the store works.
+  bool healthy(std::chrono::duration<double> stall_timeout,
+               Clock::time_point now = Clock::now()) const;
+  bool failed() const { return failed_; }
+
+ private:
+  void run();
+  void process(std::vector<mapping::Keyframe>& batch);
+  void publish(bool force);
+
+  AggregatorCore& core_;
+  PatchQueue& queue_;
+  AggregatorSink& sink_;
+  const AggregatorConfig& config_;
+  std::thread thread_;
+  std::atomic<bool> failed_{false};
+  /// Start of the batch in processing (epoch = none), for the watchdog.
+  std::atomic<Clock::rep> busy_since_{0};
+
+  // Mapping thread only.
+  std::set<std::string> dirty_streams_;
+  bool summary_dirty_ = true;
+  Clock::time_point next_poses_{};
+  Clock::time_point next_summary_{};
+
+  mutable std::mutex mutex_;
+  WorkerStatus status_;
+};
+
+}  // namespace litamin2::aggregator

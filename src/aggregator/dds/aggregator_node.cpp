@@ -1,0 +1,225 @@
+#include "litamin2/aggregator/dds/aggregator_node.hpp"
+
+#include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
+#include "litamin2/aggregator/dds/aggregator_messages.hpp"
+#include "litamin2/dds/qos.hpp"
+#include "litamin2/msg/KeyframePosesPubSubTypes.h"
+#include "litamin2/msg/MapPatchPubSubTypes.h"
+#include "litamin2/msg/MapSummaryPubSubTypes.h"
+
+#include <spdlog/spdlog.h>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+
+#include <stdexcept>
+
+namespace litamin2::aggregator {
+
+namespace fdds = eprosima::fastdds::dds;
+
+namespace {
+
+dds::ParticipantConfig participant_config(const daemon::DdsConfig& config) {
+  dds::ParticipantConfig pc;
+  pc.domain_id = static_cast<std::uint32_t>(config.domain);
+  pc.name = "litamin2-aggregator";
+  switch (config.profile) {
+    case daemon::TransportProfile::loopback:
+      pc.transport = dds::TransportProfile::kLoopback;
+      break;
+    case daemon::TransportProfile::shm:
+      pc.transport = dds::TransportProfile::kShm;
+      break;
+    case daemon::TransportProfile::default_profile:
+      pc.transport = dds::TransportProfile::kDefault;
+      break;
+    case daemon::TransportProfile::xml:
+      pc.transport = dds::TransportProfile::kXml;
+      pc.xml_file = config.xml_file;
+      pc.xml_profile = config.xml_profile;
+      break;
+  }
+  return pc;
+}
+
+fdds::TypeSupport registered(fdds::DomainParticipant* participant, fdds::TopicDataType* type) {
+  fdds::TypeSupport support(type);
+  if (support.register_type(participant) != ReturnCode_t::RETCODE_OK)
+    throw std::runtime_error("cannot register DDS type " + support.get_type_name());
+  return support;
+}
+
+double wall_seconds() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+/// Corrected poses: the latest per stream instance, kept for late readers.
+fdds::DataWriterQos latest_per_instance_qos() {
+  fdds::DataWriterQos qos = fdds::DATAWRITER_QOS_DEFAULT;
+  qos.reliability().kind = fdds::RELIABLE_RELIABILITY_QOS;
+  qos.durability().kind = fdds::TRANSIENT_LOCAL_DURABILITY_QOS;
+  qos.history().kind = fdds::KEEP_LAST_HISTORY_QOS;
+  qos.history().depth = 1;
+  qos.endpoint().history_memory_policy =
+      eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
+  return qos;
+}
+
+}  // namespace
+
+class AggregatorNode::Sink : public AggregatorSink {
+ public:
+  Sink(fdds::DataWriter* poses, fdds::DataWriter* summary) : poses_(poses), summary_(summary) {}
+  void publish_poses(const StreamPoses& poses) override {
+    litamin2::msg::KeyframePoses msg = to_keyframe_poses_msg(poses);
+    if (!poses_->write(&msg)) spdlog::warn("cannot publish the poses of stream {}", poses.stream);
+  }
+  void publish_summary(const MapSummary& summary) override {
+    litamin2::msg::MapSummary msg = to_map_summary_msg(summary, wall_seconds());
+    if (!summary_->write(&msg)) spdlog::warn("cannot publish the map summary");
+  }
+
+ private:
+  fdds::DataWriter* poses_;
+  fdds::DataWriter* summary_;
+};
+
+AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Progress& progress)
+    : config_(std::move(config)),
+      queue_(static_cast<std::size_t>(config_.ingest.queue_capacity)),
+      listener_(queue_) {
+  store::StoreOptions options;
+  options.synchronous_full = config_.store.synchronous_full;
+  core_ = std::make_unique<AggregatorCore>(config_.store.path, store::OpenMode::CreateIfMissing,
+                                           config_.mapper, options, progress);
+  spdlog::info("store {}: {} keyframe(s) of {} stream(s) recovered, {} loop edge(s)",
+               config_.store.path, core_->recovered(), core_->mapper().stats().streams,
+               core_->mapper().loops().size());
+
+  std::string error;
+  participant_ = dds::create_participant(participant_config(config_.dds), &error);
+  if (!participant_) throw std::runtime_error("cannot create the DDS participant: " + error);
+  patch_type_ = registered(participant_.get(), new litamin2::msg::MapPatchPubSubType());
+  poses_type_ = registered(participant_.get(), new litamin2::msg::KeyframePosesPubSubType());
+  summary_type_ = registered(participant_.get(), new litamin2::msg::MapSummaryPubSubType());
+  status_type_ =
+      registered(participant_.get(), new diagnostic_msgs::msg::DiagnosticArrayPubSubType());
+
+  subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
+  publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
+  if (!subscriber_ || !publisher_) throw std::runtime_error("cannot create publisher/subscriber");
+  auto topic = [&](const std::string& name, const fdds::TypeSupport& type) {
+    fdds::Topic* t =
+        participant_->create_topic(name, type.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
+    if (!t) throw std::runtime_error("cannot create topic " + name);
+    return t;
+  };
+  fdds::Topic* patches = topic(config_.topics.map_patches, patch_type_);
+  fdds::DataWriter* poses_writer = publisher_->create_datawriter(
+      topic(config_.topics.keyframe_poses, poses_type_), latest_per_instance_qos());
+  fdds::DataWriter* summary_writer = publisher_->create_datawriter(
+      topic(config_.topics.map_summary, summary_type_), latest_per_instance_qos());
+  status_writer_ = publisher_->create_datawriter(topic(config_.topics.status, status_type_),
+                                                 dds::status_writer_qos());
+  if (!poses_writer || !summary_writer || !status_writer_)
+    throw std::runtime_error("cannot create output writers");
+  sink_ = std::make_unique<Sink>(poses_writer, summary_writer);
+  worker_ = std::make_unique<MappingWorker>(*core_, queue_, *sink_, config_);
+  worker_->start();
+
+  reader_ = subscriber_->create_datareader(patches, dds::map_patches_reader_qos(), &listener_,
+                                           fdds::StatusMask::data_available()
+                                               << fdds::StatusMask::subscription_matched()
+                                               << fdds::StatusMask::sample_lost());
+  if (!reader_) throw std::runtime_error("cannot create the map patch reader");
+  next_status_ = Clock::now();
+  spdlog::info("DDS participant up: domain {}, profile {}, reading {}, publishing {} and {}",
+               config_.dds.domain, daemon::to_string(config_.dds.profile),
+               config_.topics.map_patches, config_.topics.keyframe_poses,
+               config_.topics.map_summary);
+}
+
+AggregatorNode::~AggregatorNode() {
+  shutdown();
+  worker_.reset();
+  participant_.reset();
+}
+
+void AggregatorNode::poll(Clock::time_point now) {
+  if (stopped_ || now < next_status_) return;
+  publish_status(now);
+  next_status_ = now + std::chrono::duration_cast<Clock::duration>(
+                           std::chrono::duration<double>(config_.publish.status_period_s));
+}
+
+bool AggregatorNode::healthy(Clock::time_point now) const {
+  if (worker_->failed()) return false;
+  if (!config_.watchdog.enabled) return true;
+  return worker_->healthy(std::chrono::duration<double>(config_.watchdog.stall_timeout_s), now);
+}
+
+bool AggregatorNode::failed() const {
+  return worker_->failed();
+}
+
+WorkerStatus AggregatorNode::status() const {
+  return worker_->status();
+}
+
+std::string AggregatorNode::summary() const {
+  const WorkerStatus s = worker_->status();
+  return fmt::format("{} keyframe(s) of {} stream(s), {} loop(s), {} duplicate(s), {} queued",
+                     s.keyframes, s.streams.size(), s.loops, s.duplicates, queue_.size());
+}
+
+void AggregatorNode::publish_status(Clock::time_point now) {
+  const WorkerStatus w = worker_->status();
+  IngestCounters in;
+  in.received = listener_.received();
+  in.rejected = listener_.rejected();
+  in.samples_lost = listener_.samples_lost();
+  in.writers = listener_.writers();
+  in.queued = queue_.size();
+  in.queue_capacity = queue_.capacity();
+  in.queue_high_water = queue_.high_water();
+  in.store_path = config_.store.path;
+  std::uint8_t level = 0;
+  std::string message = "ok";
+  if (!w.error.empty()) {
+    level = 2;
+    message = "store failed: " + w.error;
+  } else if (!healthy(now)) {
+    level = 2;
+    message = "mapping stalled";
+  } else if (in.rejected > reported_rejected_) {
+    level = 1;
+    message = "bad map patches received";
+  } else if (in.samples_lost > reported_lost_) {
+    level = 1;
+    message = "map patches lost";
+  }
+  reported_rejected_ = in.rejected;
+  reported_lost_ = in.samples_lost;
+  auto msg = make_aggregator_status(w, in, level, message, wall_seconds());
+  status_writer_->write(&msg);
+}
+
+void AggregatorNode::shutdown() {
+  if (stopped_) return;
+  stopped_ = true;
+  if (reader_) {
+    // The worker still runs, so a listener waiting on a full queue gets through.
+    reader_->set_listener(nullptr);
+    subscriber_->delete_datareader(reader_);
+    reader_ = nullptr;
+  }
+  const std::size_t queued = queue_.size();
+  worker_->stop();
+  publish_status(Clock::now());
+  spdlog::info("shut down: {} queued patch(es) committed; {}", queued, summary());
+}
+
+}  // namespace litamin2::aggregator

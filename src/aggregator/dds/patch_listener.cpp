@@ -1,0 +1,44 @@
+#include "litamin2/aggregator/dds/patch_listener.hpp"
+
+#include "litamin2/dds/map_patch_conversion.hpp"
+#include "litamin2/msg/MapPatch.h"
+
+#include <spdlog/spdlog.h>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+
+namespace litamin2::aggregator {
+
+namespace fdds = eprosima::fastdds::dds;
+
+void PatchListener::on_data_available(fdds::DataReader* reader) {
+  litamin2::msg::MapPatch msg;
+  fdds::SampleInfo info;
+  std::string error;
+  while (reader->take_next_sample(&msg, &info) == ReturnCode_t::RETCODE_OK) {
+    if (!info.valid_data) continue;
+    ++received_;
+    std::optional<mapping::Keyframe> keyframe = dds::from_map_patch(msg, &error);
+    if (!keyframe) {
+      ++rejected_;
+      if (const auto suppressed = bad_patch_log_.allow())
+        spdlog::warn("dropped a bad map patch: {}{}", error,
+                     *suppressed ? fmt::format(" (and {} more since the last report)", *suppressed)
+                                 : std::string());
+      continue;
+    }
+    if (!queue_.push(std::move(*keyframe))) return;  // shutting down
+  }
+}
+
+void PatchListener::on_subscription_matched(fdds::DataReader*,
+                                            const fdds::SubscriptionMatchedStatus& info) {
+  writers_ = info.current_count;
+  spdlog::info("map patches: {} writer(s) matched", info.current_count);
+}
+
+void PatchListener::on_sample_lost(fdds::DataReader*, const fdds::SampleLostStatus& status) {
+  samples_lost_ = static_cast<std::uint64_t>(status.total_count);
+}
+
+}  // namespace litamin2::aggregator

@@ -1,0 +1,91 @@
+#include "litamin2/aggregator/map_export.hpp"
+
+#include "litamin2/io/io_error.hpp"
+#include "litamin2/io/ply.hpp"
+#include "litamin2/io/trajectory.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <filesystem>
+#include <system_error>
+
+namespace litamin2::aggregator {
+
+void write_map_ply(const std::string& path, const std::vector<Distribution>& map) {
+  static const std::vector<std::string> names = {"x",   "y",   "z",  "c00", "c01", "c02",  "c11",
+                                                 "c12", "c22", "nx", "ny",  "nz",  "count"};
+  std::vector<float> values;
+  values.reserve(map.size() * names.size());
+  for (const Distribution& d : map) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(d.cov);
+    Eigen::Vector3d n = eigen.eigenvectors().col(0);
+    if (n.z() < 0.0) n = -n;
+    const Eigen::Matrix3d& c = d.cov;
+    const double row[] = {d.mean.x(),
+                          d.mean.y(),
+                          d.mean.z(),
+                          c(0, 0),
+                          c(0, 1),
+                          c(0, 2),
+                          c(1, 1),
+                          c(1, 2),
+                          c(2, 2),
+                          n.x(),
+                          n.y(),
+                          n.z(),
+                          static_cast<double>(d.count)};
+    for (double v : row) values.push_back(static_cast<float>(v));
+  }
+  io::write_ply_vertices(path, names, values);
+}
+
+std::string stream_file_stem(const std::string& stream) {
+  std::string out;
+  for (char c : stream) {
+    if (c == '/')
+      out += "__";
+    else
+      out += c;
+  }
+  return out;
+}
+
+std::vector<std::string> write_trajectories(const std::string& dir, const StreamPoses& poses) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw io::IoError(dir, "cannot create the directory: " + ec.message());
+  std::vector<Eigen::Isometry3d> kitti;
+  std::vector<io::TimedPose> tum;
+  for (const StreamPoses::Entry& e : poses.keyframes) {
+    kitti.push_back(e.pose);
+    tum.push_back({static_cast<double>(e.stamp_ns) * 1e-9, e.pose});
+  }
+  const std::string stem = (std::filesystem::path(dir) / stream_file_stem(poses.stream)).string();
+  io::write_kitti_poses(stem + "_kitti.txt", kitti);
+  io::write_tum(stem + "_tum.txt", tum);
+  return {stem + "_kitti.txt", stem + "_tum.txt"};
+}
+
+ExportResult export_store(const ExportOptions& options) {
+  const AggregatorCore core(options.store, store::OpenMode::ReadOnly, options.mapper, {},
+                            options.progress);
+  const mapping::Mapper& mapper = core.mapper();
+  ExportResult result;
+  result.keyframes = mapper.stats().keyframes;
+  result.streams = mapper.stats().streams;
+  result.loops = mapper.loops().size();
+  if (!options.map_ply.empty()) {
+    const std::vector<Distribution> map = mapper.global_map();
+    result.voxels = map.size();
+    write_map_ply(options.map_ply, map);
+    result.files.push_back(options.map_ply);
+  }
+  if (!options.trajectories_dir.empty()) {
+    for (const StreamPoses& s : all_stream_poses(mapper))
+      for (std::string& f : write_trajectories(options.trajectories_dir, s))
+        result.files.push_back(std::move(f));
+  }
+  return result;
+}
+
+}  // namespace litamin2::aggregator

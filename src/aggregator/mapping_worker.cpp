@@ -1,0 +1,137 @@
+#include "litamin2/aggregator/mapping_worker.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+
+namespace litamin2::aggregator {
+namespace {
+
+constexpr std::chrono::milliseconds kPopTimeout(50);
+
+std::chrono::steady_clock::duration seconds(double s) {
+  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(s));
+}
+
+}  // namespace
+
+MappingWorker::MappingWorker(AggregatorCore& core, PatchQueue& queue, AggregatorSink& sink,
+                             const AggregatorConfig& config)
+    : core_(core), queue_(queue), sink_(sink), config_(config) {
+  const mapping::Mapper& mapper = core_.mapper();
+  status_.recovered = core_.recovered();
+  status_.keyframes = mapper.stats().keyframes;
+  status_.loops = mapper.loops().size();
+  status_.optimizations = mapper.stats().optimizations;
+  for (const mapping::KeyframePose& p : mapper.poses()) {
+    StreamCounts& c = status_.streams[p.key.stream];
+    ++c.keyframes;
+    c.max_id = std::max(c.max_id, p.key.id);
+  }
+}
+
+MappingWorker::~MappingWorker() {
+  stop();
+}
+
+void MappingWorker::start() {
+  for (const StreamPoses& s : all_stream_poses(core_.mapper())) sink_.publish_poses(s);
+  publish(true);
+  thread_ = std::thread([this] { run(); });
+}
+
+void MappingWorker::stop() {
+  queue_.close();
+  if (thread_.joinable()) thread_.join();
+}
+
+void MappingWorker::run() {
+  std::vector<mapping::Keyframe> batch;
+  const std::size_t max_batch = static_cast<std::size_t>(config_.ingest.max_batch);
+  for (;;) {
+    const std::size_t n = queue_.pop_batch(batch, max_batch, kPopTimeout);
+    if (n > 0 && !failed_) process(batch);
+    batch.clear();
+    if (n == 0 && queue_.closed() && queue_.size() == 0) break;
+    publish(false);
+  }
+  publish(true);
+}
+
+void MappingWorker::process(std::vector<mapping::Keyframe>& batch) {
+  const auto start = Clock::now();
+  busy_since_ = start.time_since_epoch().count();
+  IngestResult r;
+  try {
+    r = core_.ingest(batch);
+  } catch (const std::exception& e) {
+    // The store refused the batch: nothing of it reached the mapper. Stop ingesting; the
+    // process exits and, restarted, gets the patches again from the writers' transient-local
+    // history.
+    spdlog::error("ingest failed: {}", e.what());
+    failed_ = true;
+    busy_since_ = 0;
+    std::lock_guard lock(mutex_);
+    status_.error = e.what();
+    return;
+  }
+  busy_since_ = 0;
+  const mapping::Mapper& mapper = core_.mapper();
+  if (r.optimization.ran) {
+    for (const auto& [stream, counts] : status().streams) dirty_streams_.insert(stream);
+    spdlog::info("optimised: {} keyframes, {} loop edges, cost {:.4g} -> {:.4g}, {:.1f} ms",
+                 r.optimization.keyframes, r.optimization.loop_edges, r.optimization.initial_cost,
+                 r.optimization.final_cost, r.optimization.milliseconds);
+  }
+  if (r.new_loops > 0) spdlog::info("{} new loop edge(s)", r.new_loops);
+  dirty_streams_.insert(r.streams.begin(), r.streams.end());
+  if (r.added > 0) summary_dirty_ = true;
+
+  std::lock_guard lock(mutex_);
+  status_.keyframes = mapper.stats().keyframes;
+  status_.duplicates = core_.duplicates();
+  status_.loops = mapper.loops().size();
+  status_.optimizations = mapper.stats().optimizations;
+  ++status_.batches;
+  status_.last_store_ms = r.store_ms;
+  status_.last_mapper_ms = r.mapper_ms;
+  if (r.optimization.ran) status_.last_optimize_ms = r.optimization.milliseconds;
+  for (const mapping::KeyframeKey& key : r.keys) {
+    StreamCounts& c = status_.streams[key.stream];
+    ++c.keyframes;
+    c.max_id = std::max(c.max_id, key.id);
+  }
+}
+
+void MappingWorker::publish(bool force) {
+  const auto now = Clock::now();
+  if (!dirty_streams_.empty() && (force || now >= next_poses_)) {
+    const std::vector<std::string> streams(dirty_streams_.begin(), dirty_streams_.end());
+    for (const StreamPoses& s : stream_poses(core_.mapper(), streams)) sink_.publish_poses(s);
+    dirty_streams_.clear();
+    next_poses_ = now + seconds(config_.publish.poses_period_s);
+  }
+  if (summary_dirty_ && (force || now >= next_summary_)) {
+    const std::vector<Distribution> map = core_.mapper().global_map();
+    sink_.publish_summary(map_summary(core_.mapper(), map,
+                                      static_cast<std::size_t>(config_.publish.summary_max_means)));
+    summary_dirty_ = false;
+    next_summary_ = now + seconds(config_.publish.summary_period_s);
+  }
+}
+
+WorkerStatus MappingWorker::status() const {
+  std::lock_guard lock(mutex_);
+  return status_;
+}
+
+bool MappingWorker::healthy(std::chrono::duration<double> stall_timeout,
+                            Clock::time_point now) const {
+  if (failed_) return false;
+  const Clock::rep since = busy_since_;
+  if (since == 0) return true;
+  return now - Clock::time_point(Clock::duration(since)) < stall_timeout;
+}
+
+}  // namespace litamin2::aggregator

@@ -1,0 +1,173 @@
+// litamin2-aggregator: the central mapping process. Reads the daemons' map patches
+// (rt/litamin2/map_patches), keeps every keyframe in a durable SQLite store, finds loops within
+// and between streams, optimises the pose graph and publishes corrected keyframe poses, a map
+// summary and a status. Runs under systemd as Type=notify (READY, WATCHDOG, STOPPING, STATUS).
+// `litamin2-aggregator export` writes a store's map (PLY) and trajectories (KITTI, TUM).
+
+#include "litamin2/aggregator/aggregator_config.hpp"
+#include "litamin2/aggregator/dds/aggregator_node.hpp"
+#include "litamin2/aggregator/map_export.hpp"
+#include "litamin2/daemon/logging.hpp"
+#include "litamin2/daemon/sd_notify.hpp"
+#include "litamin2/daemon/shutdown_signals.hpp"
+#include "litamin2/io/io_error.hpp"
+#include "litamin2/mapping/mapper_config.hpp"
+#include "litamin2/store/store_error.hpp"
+#include "litamin2/version.hpp"
+
+#include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <iostream>
+
+using namespace litamin2;
+using namespace litamin2::aggregator;
+
+namespace {
+
+constexpr std::chrono::milliseconds kLoopPeriod(50);
+
+std::string describe(const AggregatorConfig& c) {
+  return fmt::format("domain {}, profile {}, store {}, patches from {}", c.dds.domain,
+                     daemon::to_string(c.dds.profile), c.store.path, c.topics.map_patches);
+}
+
+/// Progress of a long rebuild on stderr, about every 10 %.
+AggregatorCore::Progress progress_printer(const char* what) {
+  return [what, next = std::size_t{0}](std::size_t done, std::size_t total) mutable {
+    if (total < 1000 || (done < next && done != total)) return;
+    next = done + total / 10;
+    std::fprintf(stderr, "%s: %zu / %zu keyframes\n", what, done, total);
+  };
+}
+
+int run_export(const std::string& store_path, const std::string& map_ply,
+               const std::string& trajectories, const std::string& config_file) {
+  ExportOptions options;
+  options.store = store_path;
+  options.map_ply = map_ply;
+  options.trajectories_dir = trajectories;
+  options.progress = progress_printer("rebuilding the map");
+  try {
+    if (!config_file.empty()) options.mapper = load_aggregator_config(config_file).mapper;
+  } catch (const ConfigError& e) {
+    std::fprintf(stderr, "error: invalid configuration: %s\n", e.what());
+    return 2;
+  }
+  try {
+    const ExportResult r = export_store(options);
+    std::fprintf(stderr, "%s: %zu keyframe(s) of %zu stream(s), %zu loop(s), %zu voxel(s)\n",
+                 store_path.c_str(), r.keyframes, r.streams, r.loops, r.voxels);
+    for (const std::string& f : r.files) std::fprintf(stderr, "wrote %s\n", f.c_str());
+  } catch (const store::StoreError& e) {
+    std::fprintf(stderr, "error: cannot read the store: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Before any thread exists, so that every thread inherits the blocked SIGTERM/SIGINT.
+  daemon::ShutdownSignals signals;
+
+  CLI::App app{"litamin2-aggregator: keyframe store, loop closure and global map of every stream"};
+  std::string config_file = "/etc/litamin2/litamin2-aggregator.yaml";
+  bool check_config = false;
+  bool show_version = false;
+  app.add_option("-c,--config", config_file, "aggregator configuration (YAML)");
+  app.add_flag("--check-config", check_config, "validate the configuration and exit");
+  app.add_flag("-V,--version", show_version, "print the version and exit");
+
+  CLI::App* exporter = app.add_subcommand(
+      "export", "write the map (PLY) and trajectories (KITTI, TUM) of a store, read-only");
+  std::string store_path, map_ply, trajectories, export_config;
+  exporter->add_option("--store", store_path, "the aggregator's store (SQLite)")->required();
+  exporter->add_option("--map", map_ply, "global map of distributions (.ply)");
+  exporter->add_option("--trajectories", trajectories,
+                       "folder for <stream>_kitti.txt and <stream>_tum.txt");
+  exporter->add_option("--mapper-config", export_config,
+                       "aggregator configuration whose mapper section to use (default: built-in)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  if (show_version) {
+    std::cout << "litamin2-aggregator " << litamin2::version() << "\n";
+    return 0;
+  }
+  if (exporter->parsed()) {
+    if (map_ply.empty() && trajectories.empty()) {
+      std::fprintf(stderr, "error: export: give --map and/or --trajectories\n");
+      return 2;
+    }
+    return run_export(store_path, map_ply, trajectories, export_config);
+  }
+
+  AggregatorConfig config;
+  try {
+    config = load_aggregator_config(config_file);
+  } catch (const ConfigError& e) {
+    std::fprintf(stderr, "<3>error: invalid configuration: %s\n", e.what());
+    return 2;
+  }
+  daemon::setup_logging(config.log_level);
+  if (check_config) {
+    std::cout << config_file << ": ok (" << describe(config) << ")\n";
+    return 0;
+  }
+  spdlog::info("litamin2-aggregator {} starting: {}", litamin2::version(), describe(config));
+
+  const daemon::SdNotifier notifier = daemon::SdNotifier::from_environment();
+  const auto watchdog_interval = daemon::watchdog_interval_from_environment();
+  daemon::WatchdogPinger watchdog(notifier, config.watchdog.enabled && watchdog_interval
+                                                ? *watchdog_interval
+                                                : std::chrono::microseconds(0));
+  int exit_code = 0;
+  try {
+    notifier.status("recovering the store");
+    AggregatorNode node(config, progress_printer("recovering"));
+    notifier.ready();
+    notifier.status(node.summary());
+    auto next_summary = std::chrono::steady_clock::now();
+    int signal = 0;
+    while ((signal = signals.wait_for(kLoopPeriod)) == 0) {
+      const auto now = std::chrono::steady_clock::now();
+      node.poll(now);
+      if (node.failed()) {
+        spdlog::error("the store failed: exiting so that the service restarts");
+        exit_code = 1;
+        break;
+      }
+      const bool healthy = node.healthy(now);
+      if (!watchdog.tick(healthy, now) && !healthy && watchdog.enabled())
+        spdlog::error("a batch has been in processing for over {} s: withholding the watchdog",
+                      config.watchdog.stall_timeout_s);
+      if (now >= next_summary) {
+        notifier.status(node.summary());
+        next_summary = now + std::chrono::seconds(5);
+      }
+    }
+    if (signal != 0)
+      spdlog::info("{} received: shutting down", signal == SIGTERM ? "SIGTERM" : "SIGINT");
+    notifier.stopping();
+    node.shutdown();
+  } catch (const store::StoreError& e) {
+    spdlog::error("cannot use the store: {}", e.what());
+    exit_code = 1;
+  } catch (const ConfigError& e) {
+    spdlog::error("invalid configuration: {}", e.what());
+    exit_code = 2;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    exit_code = 1;
+  }
+  spdlog::default_logger()->flush();
+  return exit_code;
+}
