@@ -1,0 +1,26 @@
+# litamin2-aggregator end to end over real DDS, inside a private network namespace (unshare -n,
+# only lo up) and with the loopback-only transport profile.
+#  - integration_aggregator_restart: keyframes of a simulated loop (the core Tracker, offline)
+#    published as map patches for two streams by aggregator_probe; one aggregator runs
+#    uninterrupted, another is killed with SIGKILL mid-ingest, restarted and fed the rest
+#    reversed and duplicated; both stores' exports (map PLY, KITTI/TUM trajectories) must be
+#    byte-identical.
+#  - integration_aggregator_errors: corrupt store (aggregator and export exit non-zero naming
+#    the file, bytes unchanged), bad configurations, --help/--version/--check-config.
+if(TARGET litamin2-aggregator)
+  add_executable(aggregator_probe ${CMAKE_CURRENT_LIST_DIR}/aggregator_probe/main.cpp)
+  target_link_libraries(aggregator_probe PRIVATE litamin2_dds litamin2_core litamin2_io
+    litamin2_mapping CLI11::CLI11)
+
+  add_test(NAME integration_aggregator_errors
+    COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/aggregator_errors.sh ${CMAKE_BINARY_DIR}
+      ${CMAKE_CURRENT_BINARY_DIR}/aggregator_errors ${CMAKE_SOURCE_DIR})
+  set_tests_properties(integration_aggregator_errors PROPERTIES TIMEOUT 120 RUN_SERIAL TRUE)
+
+  if(TARGET litamin2-sim)
+    add_test(NAME integration_aggregator_restart
+      COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/aggregator_restart.sh ${CMAKE_BINARY_DIR}
+        ${CMAKE_CURRENT_BINARY_DIR}/aggregator_restart ${CMAKE_SOURCE_DIR})
+    set_tests_properties(integration_aggregator_restart PROPERTIES TIMEOUT 600 RUN_SERIAL TRUE)
+  endif()
+endif()

@@ -1,0 +1,268 @@
+// aggregator_probe: the patch source and pose reader of the litamin2-aggregator integration
+// tests and benchmark.
+//  publish: runs the core Tracker offline on a scan sequence and publishes its keyframes as
+//    MapPatch messages (the daemon's conversion) for each --stream, optionally only a range of
+//    keyframe ids, twice each (--duplicate), in reverse order (--reverse), at a limited rate;
+//    or (--synthetic N) patches of N random distributions for --streams-count streams at
+//    --rate patches per second per stream for --duration seconds (the ingest benchmark).
+//    The writer is reliable, transient-local, keep-all, and stays up --linger seconds.
+//  poses: reads rt/litamin2/keyframe_poses until every --stream has --expect keyframes (exit 0)
+//    or --timeout passes (exit 1); prints each stream's count and frame.
+
+#include "litamin2/core/tracker.hpp"
+#include "litamin2/dds/map_patch_conversion.hpp"
+#include "litamin2/dds/participant_factory.hpp"
+#include "litamin2/dds/qos.hpp"
+#include "litamin2/io/kitti_sequence.hpp"
+#include "litamin2/msg/KeyframePosesPubSubTypes.h"
+#include "litamin2/msg/MapPatchPubSubTypes.h"
+
+#include <CLI/CLI.hpp>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/DataWriterListener.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <mutex>
+#include <random>
+#include <thread>
+
+namespace fdds = eprosima::fastdds::dds;
+using namespace litamin2;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr std::int64_t kEpochNs = 1'700'000'000'000'000'000;
+
+class MatchListener : public fdds::DataWriterListener {
+ public:
+  void on_publication_matched(fdds::DataWriter*, const fdds::PublicationMatchedStatus& s) override {
+    matched = s.current_count;
+  }
+  std::atomic<int> matched{0};
+};
+
+class PosesListener : public fdds::DataReaderListener {
+ public:
+  void on_data_available(fdds::DataReader* reader) override {
+    litamin2::msg::KeyframePoses msg;
+    fdds::SampleInfo info;
+    while (reader->take_next_sample(&msg, &info) == ReturnCode_t::RETCODE_OK) {
+      if (!info.valid_data) continue;
+      std::lock_guard lock(mutex);
+      latest[msg.stream_id()] = {msg.keyframes().size(), msg.frame_id()};
+    }
+  }
+  std::mutex mutex;
+  std::map<std::string, std::pair<std::size_t, std::string>> latest;
+};
+
+std::vector<mapping::Keyframe> track(const std::string& folder, std::size_t frames) {
+  io::ScanSequence sequence(folder);
+  Tracker tracker{TrackerConfig{}};
+  std::vector<mapping::Keyframe> out;
+  const std::size_t n = frames > 0 ? std::min(frames, sequence.size()) : sequence.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const FrameResult r = tracker.process(sequence.load(i));
+    if (!r.keyframe) continue;
+    mapping::Keyframe kf;
+    kf.key.id = out.size();
+    kf.stamp_ns = kEpochNs + static_cast<std::int64_t>(sequence.timestamp(i) * 1e9);
+    kf.odom_pose = r.pose;
+    kf.covariance = r.covariance;
+    kf.voxel_size = tracker.map().voxel_size();
+    kf.distributions = tracker.last_distributions();
+    out.push_back(std::move(kf));
+  }
+  return out;
+}
+
+std::vector<Distribution> synthetic(std::size_t n, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-50.0, 50.0);
+  std::vector<Distribution> out(n);
+  for (Distribution& d : out) {
+    d.mean = Eigen::Vector3d(u(rng), u(rng), u(rng) * 0.05);
+    d.cov = Eigen::Vector3d(0.2, 0.1, 0.01).asDiagonal();
+    d.count = 20;
+  }
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"aggregator_probe: map patches in, corrected poses out"};
+  app.require_subcommand(1);
+  int domain = 0;
+  std::string profile = "loopback";
+  app.add_option("--domain", domain);
+  app.add_option("--profile", profile);
+
+  CLI::App* publish = app.add_subcommand("publish", "publish keyframes as map patches");
+  std::string sequence;
+  std::size_t frames = 0, synthetic_n = 0;
+  std::vector<std::string> streams;
+  int streams_count = 0;
+  std::int64_t from = 0, to = -1;
+  bool duplicate = false, reverse = false;
+  double rate = 0.0, linger = 0.0, duration = 10.0, wait_reader = 20.0;
+  std::string count_file;
+  publish->add_option("--sequence", sequence, "scan folder (litamin2-sim output)");
+  publish->add_option("--frames", frames, "scans of the sequence to track (0 = all)");
+  publish->add_option("--stream", streams, "stream id (repeatable)");
+  publish->add_option("--from", from, "first keyframe id published");
+  publish->add_option("--to", to, "last keyframe id published (-1 = last)");
+  publish->add_flag("--duplicate", duplicate, "publish every patch twice");
+  publish->add_flag("--reverse", reverse, "publish in reverse keyframe order");
+  publish->add_option("--rate", rate, "patches per second (per stream with --synthetic; 0 = max)");
+  publish->add_option("--linger", linger, "seconds the writer stays up after publishing");
+  publish->add_option("--wait-reader", wait_reader, "seconds to wait for a matched reader");
+  publish->add_option("--synthetic", synthetic_n, "random patches of N distributions");
+  publish->add_option("--streams-count", streams_count, "--synthetic: streams s000, s001, ...");
+  publish->add_option("--duration", duration, "--synthetic: seconds of publishing");
+  publish->add_option("--count-file", count_file, "write the number of keyframes per stream");
+
+  CLI::App* poses = app.add_subcommand("poses", "wait for corrected keyframe poses");
+  std::size_t expect = 0;
+  double timeout_s = 60.0;
+  std::vector<std::string> pose_streams;
+  poses->add_option("--stream", pose_streams)->required();
+  poses->add_option("--expect", expect, "keyframes expected per stream")->required();
+  poses->add_option("--timeout", timeout_s);
+  CLI11_PARSE(app, argc, argv);
+
+  std::string error;
+  auto pc = litamin2::dds::parse_participant_profile(profile, &error);
+  if (!pc) {
+    std::fprintf(stderr, "probe: %s\n", error.c_str());
+    return 1;
+  }
+  pc->domain_id = static_cast<std::uint32_t>(domain);
+  pc->name = "aggregator_probe";
+  litamin2::dds::ParticipantPtr participant = litamin2::dds::create_participant(*pc, &error);
+  if (!participant) {
+    std::fprintf(stderr, "probe: %s\n", error.c_str());
+    return 1;
+  }
+
+  if (poses->parsed()) {
+    fdds::TypeSupport type(new litamin2::msg::KeyframePosesPubSubType());
+    type.register_type(participant.get());
+    auto* topic = participant->create_topic("rt/litamin2/keyframe_poses", type.get_type_name(),
+                                            fdds::TOPIC_QOS_DEFAULT);
+    fdds::DataReaderQos qos = litamin2::dds::map_patches_reader_qos();
+    qos.history().kind = fdds::KEEP_LAST_HISTORY_QOS;
+    qos.history().depth = 1;
+    PosesListener listener;
+    auto* subscriber = participant->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
+    subscriber->create_datareader(topic, qos, &listener);
+    const auto deadline = Clock::now() + std::chrono::duration<double>(timeout_s);
+    bool done = false;
+    while (!done && Clock::now() < deadline) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      std::lock_guard lock(listener.mutex);
+      done = std::all_of(pose_streams.begin(), pose_streams.end(), [&](const std::string& s) {
+        auto it = listener.latest.find(s);
+        return it != listener.latest.end() && it->second.first >= expect;
+      });
+    }
+    {
+      std::lock_guard lock(listener.mutex);
+      for (const auto& [s, v] : listener.latest)
+        std::printf("poses %s: %zu keyframes in %s\n", s.c_str(), v.first, v.second.c_str());
+    }
+    participant.reset();
+    if (!done) std::fprintf(stderr, "probe: timed out waiting for %zu keyframes\n", expect);
+    return done ? 0 : 1;
+  }
+
+  fdds::TypeSupport type(new litamin2::msg::MapPatchPubSubType());
+  type.register_type(participant.get());
+  auto* topic = participant->create_topic("rt/litamin2/map_patches", type.get_type_name(),
+                                          fdds::TOPIC_QOS_DEFAULT);
+  auto* publisher = participant->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
+  MatchListener match;
+  auto* writer = publisher->create_datawriter(topic, litamin2::dds::map_patches_writer_qos(),
+                                              &match, fdds::StatusMask::publication_matched());
+  if (!writer) {
+    std::fprintf(stderr, "probe: no writer\n");
+    return 1;
+  }
+  const auto wait_deadline = Clock::now() + std::chrono::duration<double>(wait_reader);
+  while (match.matched == 0 && Clock::now() < wait_deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+
+  std::size_t published = 0;
+  if (synthetic_n > 0) {
+    // The benchmark: every stream one patch per 1/rate seconds, for `duration` seconds.
+    std::mt19937 rng(7);
+    std::vector<litamin2::msg::MapPatch> templates;
+    for (int s = 0; s < streams_count; ++s) {
+      char id[16];
+      std::snprintf(id, sizeof id, "s%03d", s);
+      templates.push_back(litamin2::dds::to_map_patch(
+          {id, 0}, kEpochNs, std::string(id) + "/odom", Eigen::Isometry3d::Identity(),
+          mapping::Matrix6d::Identity() * 1e-4, 1.0, synthetic(synthetic_n, rng)));
+    }
+    const double period = rate > 0 ? 1.0 / rate : 1.0;
+    const auto start = Clock::now();
+    for (std::uint64_t k = 0;; ++k) {
+      const auto due = start + std::chrono::duration_cast<Clock::duration>(
+                                   std::chrono::duration<double>(k * period));
+      if (due - start > std::chrono::duration<double>(duration)) break;
+      std::this_thread::sleep_until(due);
+      for (auto& msg : templates) {
+        msg.keyframe_id(k);
+        litamin2::dds::ns_to_stamp(kEpochNs + static_cast<std::int64_t>(k * period * 1e9),
+                                   msg.stamp().sec(), msg.stamp().nanosec());
+        msg.pose().position().x(static_cast<double>(k));
+        if (writer->write(&msg)) ++published;
+      }
+    }
+  } else {
+    std::vector<mapping::Keyframe> keyframes = track(sequence, frames);
+    if (!count_file.empty()) {
+      if (FILE* f = std::fopen(count_file.c_str(), "w")) {
+        std::fprintf(f, "%zu\n", keyframes.size());
+        std::fclose(f);
+      }
+    }
+    const std::int64_t last = to < 0 ? static_cast<std::int64_t>(keyframes.size()) - 1 : to;
+    std::vector<std::pair<std::string, std::size_t>> order;
+    for (std::int64_t i = from; i <= last && i < static_cast<std::int64_t>(keyframes.size()); ++i)
+      for (const std::string& s : streams) {
+        order.emplace_back(s, static_cast<std::size_t>(i));
+        if (duplicate) order.emplace_back(s, static_cast<std::size_t>(i));
+      }
+    if (reverse) std::reverse(order.begin(), order.end());
+    const auto start = Clock::now();
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      if (rate > 0)
+        std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(
+                                                  std::chrono::duration<double>(k / rate)));
+      mapping::Keyframe kf = keyframes[order[k].second];
+      kf.key.stream = order[k].first;
+      litamin2::msg::MapPatch msg = litamin2::dds::to_map_patch(kf, kf.key.stream + "/odom");
+      if (writer->write(&msg)) ++published;
+    }
+    std::printf("keyframes %zu, published %zu patch(es)\n", keyframes.size(), published);
+  }
+  std::fflush(stdout);
+  // Reliable delivery of everything written before leaving (or lingering).
+  writer->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(30, 0));
+  if (linger > 0) std::this_thread::sleep_for(std::chrono::duration<double>(linger));
+  std::fprintf(stderr, "probe: published %zu patch(es), %d reader(s) matched\n", published,
+               match.matched.load());
+  participant.reset();
+  return 0;
+}
