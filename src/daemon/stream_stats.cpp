@@ -30,6 +30,16 @@ void StreamStats::record_bad_message() {
   ++counters_.bad_messages;
 }
 
+void StreamStats::record_out_of_order() {
+  std::lock_guard lock(mutex_);
+  ++counters_.frames_out_of_order;
+}
+
+void StreamStats::record_non_finite_points(std::uint64_t points) {
+  std::lock_guard lock(mutex_);
+  counters_.points_non_finite += points;
+}
+
 void StreamStats::record_dropped(std::uint64_t frames) {
   std::lock_guard lock(mutex_);
   counters_.frames_dropped += frames;

@@ -1,7 +1,7 @@
 // DaemonNode over real DDS, loopback-only profile (UDP on 127.0.0.1 with unicast discovery,
 // shared memory; no multicast): malformed PointCloud2 messages are counted and dropped without
 // disturbing their stream or another one; a stream published faster than it is processed drops
-// its oldest frames and counts them.
+// its oldest frames and counts them, and its memory stays flat while it does.
 
 #include "litamin2/daemon/daemon_config.hpp"
 
@@ -11,72 +11,18 @@
 
 #include "litamin2/daemon/dds/daemon_node.hpp"
 #include "litamin2/dds/pointcloud2_conversion.hpp"
-#include "litamin2/dds/qos.hpp"
-#include "sensor_msgs/msg/PointCloud2PubSubTypes.h"
+#include "support/daemon_dds.hpp"
 #include "support/synthetic_scene.hpp"
 
-#include <yaml-cpp/yaml.h>
-#include <fastdds/dds/publisher/DataWriter.hpp>
-#include <fastdds/dds/publisher/Publisher.hpp>
-#include <fastdds/dds/topic/Topic.hpp>
-
-#include <thread>
+#include <cmath>
 
 namespace fdds = eprosima::fastdds::dds;
 using namespace litamin2;
 using namespace litamin2::daemon;
+using namespace litamin2::testing;
 using namespace std::chrono_literals;
 
 namespace {
-
-/// A test publisher of PointCloud2 topics on the loopback profile.
-class CloudPublisher {
- public:
-  explicit CloudPublisher(int domain) {
-    litamin2::dds::ParticipantConfig config;
-    config.domain_id = static_cast<std::uint32_t>(domain);
-    config.name = "daemon_dds_node_test";
-    participant_ = litamin2::dds::create_participant(config);
-    type_ = fdds::TypeSupport(new sensor_msgs::msg::PointCloud2PubSubType());
-    type_.register_type(participant_.get());
-    publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
-  }
-  fdds::DataWriter* writer(const std::string& topic_name) {
-    auto* topic =
-        participant_->create_topic(topic_name, type_.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
-    return publisher_->create_datawriter(topic, litamin2::dds::points_writer_qos(false, 100));
-  }
-  bool ok() const { return participant_ && publisher_; }
-
- private:
-  litamin2::dds::ParticipantPtr participant_;
-  fdds::TypeSupport type_;
-  fdds::Publisher* publisher_ = nullptr;
-};
-
-bool matched(fdds::DataWriter* writer) {
-  fdds::PublicationMatchedStatus status;
-  writer->get_publication_matched_status(status);
-  return status.current_count > 0;
-}
-
-const StreamStatus& find(const std::vector<StreamStatus>& all, const std::string& id) {
-  for (const auto& s : all)
-    if (s.id == id) return s;
-  throw std::runtime_error("no stream " + id);
-}
-
-/// Polls the node until `condition(status)` holds or `timeout` passes.
-template <class F>
-bool poll_until(DaemonNode& node, F condition, std::chrono::milliseconds timeout = 30s) {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  while (std::chrono::steady_clock::now() < deadline) {
-    node.poll();
-    if (condition(node.status())) return true;
-    std::this_thread::sleep_for(10ms);
-  }
-  return false;
-}
 
 sensor_msgs::msg::PointCloud2 scan_message(int i) {
   static const PointCloud scene = litamin2::testing::synthetic_scene(3, 20000);
@@ -86,20 +32,16 @@ sensor_msgs::msg::PointCloud2 scan_message(int i) {
                                        100.0 + 0.1 * i, "lidar");
 }
 
-DaemonConfig config_of(const std::string& yaml) {
-  return daemon_config_from_yaml(YAML::Load(yaml));
-}
-
 }  // namespace
 
 TEST(DaemonNode, BadMessagesAreCountedAndDropped) {
-  DaemonNode node(config_of(R"(
-dds: {domain: 41, profile: loopback}
+  const int domain = test_domain();
+  DaemonNode node(config_of("dds: {domain: " + std::to_string(domain) + R"(, profile: loopback}
 streams: [{id: dnode_good}, {id: dnode_bad}]
 threads: 2
 queue_depth: 100
 )"));
-  CloudPublisher publisher(41);
+  CloudPublisher publisher(domain);
   ASSERT_TRUE(publisher.ok());
   fdds::DataWriter* good = publisher.writer("rt/dnode_good/points");
   fdds::DataWriter* bad = publisher.writer("rt/dnode_bad/points");
@@ -150,14 +92,14 @@ queue_depth: 100
 }
 
 TEST(DaemonNode, OverloadDropsOldestFrames) {
-  DaemonNode node(config_of(R"(
-dds: {domain: 42, profile: loopback}
+  const int domain = test_domain();
+  DaemonNode node(config_of("dds: {domain: " + std::to_string(domain) + R"(, profile: loopback}
 streams: [{id: dnode_fast}]
 threads: 1
 queue_depth: 2
 shutdown_timeout_s: 5
 )"));
-  CloudPublisher publisher(42);
+  CloudPublisher publisher(domain);
   fdds::DataWriter* writer = publisher.writer("rt/dnode_fast/points");
   ASSERT_TRUE(writer);
   ASSERT_TRUE(poll_until(
@@ -174,6 +116,96 @@ shutdown_timeout_s: 5
   EXPECT_GT(s.counters.dropped, 0u);
   EXPECT_EQ(s.stats.frames_processed + s.counters.dropped, static_cast<std::uint64_t>(kFrames));
   EXPECT_EQ(s.counters.submitted, static_cast<std::uint64_t>(kFrames));
+}
+
+TEST(DaemonNode, OverloadKeepsMemoryFlat) {
+  // A stream published far faster than it is processed (reliable, so every frame arrives)
+  // into a queue of depth 2 on one thread: most frames are dropped, and the process's memory
+  // (the node runs in this process) after the first 100 frames and at the end differ by less
+  // than kBoundMb. Unpaced, the writer sends 400 frames in ~0.2 s while ~4 are processed, so
+  // it is paced at kRateHz (several times the processing rate here) for up to kMaxFrames /
+  // kMaxPublishTime: processing, keyframes and map patches go on during the whole measurement.
+  // In steady state everything is bounded: the queue (2 frames of 20k points, 2 x 240 KB), the
+  // frame in processing, the writer's history (10 samples x 320 KB), the reader's (keep-last
+  // 10), and the tracker's map (the sensor circles in a 4 m wide loop in one scene that every
+  // scan sees whole, so the map is full after the first keyframes). One thing grows for a
+  // while: the map-patch writer (transient-local, keep-all) keeps each keyframe's patch for
+  // late readers, up to Fast DDS's default 400 per stream: here ~32 KB each (every processed
+  // frame turns 9 degrees, so is a keyframe), ~13 MB at most. 30 MB covers that plus allocator
+  // and DDS pool noise (measured: 5 MB over ~60 processed frames, 16 MB over 500 at 40 Hz);
+  // leaking one converted scan (240 KB) per frame received after the first 100 would add
+  // hundreds of MB, and patches kept without a limit grow past it after ~900 keyframes.
+  constexpr double kBoundMb = 30.0;
+  constexpr int kMaxFrames = 4000;
+  constexpr double kRateHz = 400.0;
+  constexpr auto kMaxPublishTime = 15s;
+  constexpr int kLoop = 40;  // frames per loop of the sensor's path
+  const int domain = test_domain();
+  DaemonNode node(config_of("dds: {domain: " + std::to_string(domain) + R"(, profile: loopback}
+streams: [{id: dnode_flood}]
+threads: 1
+queue_depth: 2
+shutdown_timeout_s: 5
+)"));
+  CloudPublisher publisher(domain);
+  fdds::DataWriter* writer = publisher.writer("rt/dnode_flood/points", 10);
+  ASSERT_TRUE(writer);
+  ASSERT_TRUE(poll_until(
+      node, [&](const auto& st) { return find(st, "dnode_flood").reading && matched(writer); }));
+  // One loop of scans, re-stamped on every pass (stamps must increase).
+  std::vector<sensor_msgs::msg::PointCloud2> loop;
+  const PointCloud scene = litamin2::testing::synthetic_scene(5, 20000);
+  for (int i = 0; i < kLoop; ++i) {
+    const double a = 2.0 * M_PI * i / kLoop;
+    Eigen::Isometry3d sensor = Eigen::Isometry3d::Identity();
+    sensor.translation() << 2.0 * std::cos(a), 2.0 * std::sin(a), 0.0;
+    sensor.linear() = Eigen::AngleAxisd(a + M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    loop.push_back(
+        litamin2::dds::to_pointcloud2(transformed(scene, sensor.inverse()), 0.0, "lidar"));
+  }
+  long rss_after_100_kb = -1;
+  std::uint64_t published = 0;
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < kMaxFrames && std::chrono::steady_clock::now() - start < kMaxPublishTime;
+       ++i) {
+    std::this_thread::sleep_until(start + std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                              std::chrono::duration<double>(i / kRateHz)));
+    auto& msg = loop[i % kLoop];
+    msg.header().stamp().sec(1000 + i / 10);
+    msg.header().stamp().nanosec(static_cast<std::uint32_t>(i % 10) * 100'000'000u);
+    ASSERT_TRUE(writer->write(&msg));
+    ++published;
+    node.poll();
+    if (published == 100) rss_after_100_kb = proc_status_kb("VmRSS");
+  }
+  const double publish_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_TRUE(poll_until(node,
+                         [&](const auto& st) {
+                           const StreamStatus& s = find(st, "dnode_flood");
+                           return s.stats.frames_received == published &&
+                                  s.stats.frames_processed + s.counters.dropped == published;
+                         }))
+      << "received " << find(node.status(), "dnode_flood").stats.frames_received << " of "
+      << published;
+  const long rss_end_kb = proc_status_kb("VmRSS");
+  const StreamStatus s = find(node.status(), "dnode_flood");
+  EXPECT_TRUE(node.shutdown().complete);
+  const double diff_mb = (rss_end_kb - rss_after_100_kb) / 1024.0;
+  std::printf(
+      "%llu frames published in %.1f s: %llu processed, %llu dropped, %llu keyframes; "
+      "RSS %.1f MB after 100 frames, %.1f MB at the end (peak %.1f MB)\n",
+      static_cast<unsigned long long>(published), publish_s,
+      static_cast<unsigned long long>(s.stats.frames_processed),
+      static_cast<unsigned long long>(s.counters.dropped),
+      static_cast<unsigned long long>(s.stats.keyframes), rss_after_100_kb / 1024.0,
+      rss_end_kb / 1024.0, proc_status_kb("VmHWM") / 1024.0);
+  ASSERT_GT(published, 100u);
+  EXPECT_GT(s.counters.dropped, 0u);
+  EXPECT_EQ(s.stats.frames_processed + s.counters.dropped, published);
+  EXPECT_EQ(s.stats.bad_messages, 0u);
+  EXPECT_EQ(s.stats.frames_out_of_order, 0u);
+  EXPECT_LT(std::abs(diff_mb), kBoundMb);
 }
 
 #else

@@ -19,8 +19,14 @@ struct StatsSnapshot {
   std::uint64_t frames_processed = 0;
   /// Frames dropped because the stream fell behind (or at shutdown).
   std::uint64_t frames_dropped = 0;
-  /// Messages rejected by validation.
+  /// Messages rejected by validation, and scans with no finite point (empty, or all NaN/Inf).
   std::uint64_t bad_messages = 0;
+  /// Valid scans dropped because their header stamp was not later than the last accepted
+  /// scan's of the stream (a stamp going backwards, or a duplicate): never processed.
+  std::uint64_t frames_out_of_order = 0;
+  /// Points with a NaN/Inf coordinate dropped from received scans (the rest of the scan is
+  /// processed).
+  std::uint64_t points_non_finite = 0;
   /// Frames whose processing failed (exception).
   std::uint64_t frames_failed = 0;
   /// Frames whose registration did not converge (pose from the motion prediction).
@@ -48,6 +54,8 @@ class StreamStats {
 
   void record_received();
   void record_bad_message();
+  void record_out_of_order();
+  void record_non_finite_points(std::uint64_t points);
   void record_dropped(std::uint64_t frames = 1);
   void record_failed();
   /// A result published at `published` for a frame that arrived at `arrival`.

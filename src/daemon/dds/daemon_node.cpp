@@ -36,6 +36,7 @@ struct DaemonNode::Stream {
   bool reliable = false;
   std::uint64_t reported_dropped = 0;
   std::uint64_t reported_bad = 0;
+  std::uint64_t reported_out_of_order = 0;
 };
 
 namespace {
@@ -270,9 +271,13 @@ void DaemonNode::publish_status(Clock::time_point now) {
     } else if (st.stats.bad_messages > s.reported_bad) {
       st.level = 1;
       st.message = "bad messages received";
+    } else if (st.stats.frames_out_of_order > s.reported_out_of_order) {
+      st.level = 1;
+      st.message = "frames out of order dropped";
     }
     s.reported_dropped = st.counters.dropped;
     s.reported_bad = st.stats.bad_messages;
+    s.reported_out_of_order = st.stats.frames_out_of_order;
   }
   auto msg = make_status_message(statuses, wall_seconds());
   status_writer_->write(&msg);

@@ -23,22 +23,51 @@ void PointsListener::on_data_available(fdds::DataReader* reader) {
   sensor_msgs::msg::PointCloud2 msg;
   fdds::SampleInfo info;
   dds::CloudConversion conversion;
+  auto log_bad = [&](const char* what, const std::string& detail) {
+    if (const auto suppressed = bad_message_log_.allow())
+      spdlog::warn("stream {}: dropped a bad PointCloud2 ({}: {}){}", stream_, what, detail,
+                   *suppressed ? fmt::format(" and {} more since the last report", *suppressed)
+                               : std::string());
+  };
   while (reader->take_next_sample(&msg, &info) == ReturnCode_t::RETCODE_OK) {
     if (!info.valid_data) continue;
     const auto arrival = std::chrono::steady_clock::now();
     if (dds::from_pointcloud2(msg, options_, conversion) != dds::CloudError::kNone) {
       stats_.record_bad_message();
-      if (const auto suppressed = bad_message_log_.allow())
-        spdlog::warn("stream {}: dropped a bad PointCloud2 ({}: {}){}", stream_,
-                     dds::to_string(conversion.error), conversion.message,
-                     *suppressed ? fmt::format(" and {} more since the last report", *suppressed)
-                                 : std::string());
+      log_bad(dds::to_string(conversion.error), conversion.message);
+      continue;
+    }
+    if (conversion.non_finite > 0) stats_.record_non_finite_points(conversion.non_finite);
+    if (conversion.cloud.points.empty()) {
+      stats_.record_bad_message();
+      log_bad("empty", fmt::format("no finite point among {} point(s)", conversion.total_points));
+      continue;
+    }
+    const std::pair<std::int32_t, std::uint32_t> stamp{msg.header().stamp().sec(),
+                                                       msg.header().stamp().nanosec()};
+    std::optional<std::pair<std::int32_t, std::uint32_t>> previous;
+    {
+      std::lock_guard lock(stamp_mutex_);
+      if (last_stamp_ && stamp <= *last_stamp_) {
+        previous = last_stamp_;
+      } else {
+        last_stamp_ = stamp;
+      }
+    }
+    if (previous) {
+      stats_.record_out_of_order();
+      if (const auto suppressed = out_of_order_log_.allow())
+        spdlog::warn(
+            "stream {}: dropped a scan stamped {}.{:09d}, not after the last one ({}.{:09d}){}",
+            stream_, stamp.first, stamp.second, previous->first, previous->second,
+            *suppressed ? fmt::format(" and {} more since the last report", *suppressed)
+                        : std::string());
       continue;
     }
     Frame frame;
     frame.cloud = std::move(conversion.cloud);
     conversion.cloud = PointCloud();
-    frame.stamp = {msg.header().stamp().sec(), msg.header().stamp().nanosec()};
+    frame.stamp = {stamp.first, stamp.second};
     frame.frame_id = msg.header().frame_id();
     frame.arrival = arrival;
     frame.sequence = sequence_.fetch_add(1);
@@ -50,6 +79,11 @@ void PointsListener::on_data_available(fdds::DataReader* reader) {
 void PointsListener::on_subscription_matched(fdds::DataReader*,
                                              const fdds::SubscriptionMatchedStatus& info) {
   spdlog::info("stream {}: {} publisher(s) matched", stream_, info.current_count);
+  if (info.current_count_change > 0) {
+    // A new publisher (or a restarted one) may start its stamps anew.
+    std::lock_guard lock(stamp_mutex_);
+    last_stamp_.reset();
+  }
 }
 
 void PointsListener::on_sample_lost(fdds::DataReader*, const fdds::SampleLostStatus& status) {

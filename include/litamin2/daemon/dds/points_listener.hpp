@@ -3,6 +3,16 @@
 /// validates and converts it (litamin2::dds::from_pointcloud2), and queues it on the stream's
 /// scheduler; a bad message is counted and logged (rate-limited), never processed. It never
 /// blocks on processing: the scheduler's queue drops the oldest frame when the stream is behind.
+///
+/// Besides the message checks of the conversion:
+///  - points with a NaN/Inf coordinate are dropped and counted (points_non_finite); a scan
+///    left with no point (width * height == 0, or every point non-finite) is a bad message:
+///    the tracker can do nothing with it but extrapolate;
+///  - header stamps must increase strictly within a stream: a scan stamped at or before the
+///    last accepted one (reordered, duplicated or replayed) is dropped and counted
+///    (frames_out_of_order), so that the tracker's constant-velocity prediction and the
+///    odometry's stamps only move forward. A newly matched publisher may restart its stamps:
+///    the check then starts over (the tracker is not reset).
 
 #include "litamin2/daemon/log_rate_limiter.hpp"
 #include "litamin2/daemon/stream_scheduler.hpp"
@@ -11,6 +21,8 @@
 
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 
+#include <mutex>
+#include <optional>
 #include <string>
 
 namespace litamin2::daemon {
@@ -38,6 +50,10 @@ class PointsListener : public eprosima::fastdds::dds::DataReaderListener {
   StreamStats& stats_;
   const dds::CloudConversionOptions options_;
   LogRateLimiter bad_message_log_;
+  LogRateLimiter out_of_order_log_;
+  /// The stamp of the last accepted scan (none before the first, or after a new publisher).
+  std::mutex stamp_mutex_;
+  std::optional<std::pair<std::int32_t, std::uint32_t>> last_stamp_;
   std::atomic<std::uint64_t> sequence_{0};
   std::atomic<std::uint64_t> samples_lost_{0};
 };
