@@ -185,9 +185,8 @@ struct Mapper::Impl {
   void detect_loops(const Entry& query, std::vector<LoopEdge>* new_loops) {
     std::vector<std::pair<const Entry*, Eigen::Isometry3d>> candidates;
     if (auto c = proximity_candidate(query)) candidates.push_back(*c);
-    if (auto c = descriptor_candidate(query)) {
-      if (candidates.empty() || candidates.front().first != c->first) candidates.push_back(*c);
-    }
+    // The descriptor's candidate may be the same keyframe: its yaw is still another start.
+    if (auto c = descriptor_candidate(query)) candidates.push_back(*c);
     for (const auto& [candidate, initial] : candidates) {
       ++stats.candidates;
       const VoxelMap submap = submap_of(*candidate);

@@ -46,7 +46,7 @@ struct LoopVerificationConfig {
   /// distributions lies within fitness_distance of the map's surfaces at convergence ...
   double min_fitness = 0.6;
   /// ... and the root mean square of those distances is at most this, metres.
-  double max_rmse = 0.15;
+  double max_rmse = 0.2;
   /// Standard deviations the loop edge's information is built from: rotation (degrees) ...
   double rotation_sigma_deg = 0.5;
   /// ... and translation (metres).

@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Offline SLAM on a simulated sequence with a loop: KITTI 00's trajectory, frames 0-1650
+# (1.2 km; frames 1570-1640 revisit the street of frames 115-205). litamin2-odometry
+# --loop-closure must find loops, and litamin2-eval must give an ATE with loop closure clearly
+# below the odometry's own: at most 80 % of it (measured: 0.61 m -> 0.41 m, 53 loops).
+set -euo pipefail
+tools=$1; work=$2
+rm -rf "$work"; mkdir -p "$work"
+"$tools/sim/litamin2-sim" --trajectory "$3/data/kitti/poses/00.txt" --sequence 00 \
+  --frames 0:1650 --output "$work/seq" 2>/dev/null
+"$tools/odometry/litamin2-odometry" --loop-closure -o "$work/out" "$work/seq" | tee "$work/log"
+for f in poses_kitti.txt poses_odometry_kitti.txt poses_kitti_cam.txt \
+         poses_odometry_kitti_cam.txt mapper_config.yaml; do
+  test -s "$work/out/$f" || { echo "missing $f"; exit 1; }
+done
+ate() {
+  "$tools/eval/litamin2-eval" --gt "$work/seq/poses.txt" --est "$1" --json |
+    python3 -c 'import json,sys; print(json.load(sys.stdin)["ate"]["translation_rmse_m"])'
+}
+odometry=$(ate "$work/out/poses_odometry_kitti_cam.txt")
+slam=$(ate "$work/out/poses_kitti_cam.txt")
+loops=$(grep -o '[0-9]* loops verified' "$work/log" | awk '{print $1}')
+echo "ATE odometry only $odometry m, with loop closure $slam m, $loops loops"
+[ "${loops:-0}" -ge 10 ] || { echo "too few loops found"; exit 1; }
+awk -v o="$odometry" -v s="$slam" 'BEGIN { exit !(s < 0.8 * o) }' ||
+  { echo "loop closure did not reduce the ATE clearly"; exit 1; }
+echo "1 passed, 0 failed"

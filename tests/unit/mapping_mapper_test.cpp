@@ -1,0 +1,146 @@
+// The mapper on a synthetic street: duplicates and out-of-order keyframes, a drifting
+// out-and-back drive corrected by its loops, and two vehicles starting at unknown relative
+// poses merged into one frame.
+
+#include "litamin2/core/voxelizer.hpp"
+#include "litamin2/mapping/mapper.hpp"
+#include "support/synthetic_scene.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+using namespace litamin2;
+using namespace litamin2::mapping;
+
+namespace {
+
+Eigen::Isometry3d planar(double x, double y, double yaw_deg) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() =
+      Eigen::AngleAxisd(yaw_deg * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  pose.translation() = Eigen::Vector3d(x, y, 0.0);
+  return pose;
+}
+
+/// A drive along the street's centre line, from x = -30 to 30 m and back, a keyframe every
+/// 3 m: the way back passes every place of the way out, facing the other way.
+std::vector<Eigen::Isometry3d> out_and_back() {
+  std::vector<Eigen::Isometry3d> poses;
+  for (double x = -30.0; x <= 30.0; x += 3.0) poses.push_back(planar(x, 0.0, 0.0));
+  for (double x = 28.5; x >= -30.0; x -= 3.0) poses.push_back(planar(x, 1.0, 180.0));
+  return poses;
+}
+
+/// Keyframes of one stream: distributions of the scene seen from each true pose, and an
+/// odometry that turns `drift_deg` too far per keyframe, in the frame of the first pose.
+std::vector<Keyframe> drive(const std::string& stream, const std::vector<Eigen::Isometry3d>& truth,
+                            double drift_deg, unsigned seed) {
+  const PointCloud scene = litamin2::testing::synthetic_scene(seed, 40000);
+  Voxelizer voxelizer(VoxelizerConfig{});
+  std::vector<Keyframe> out;
+  Eigen::Isometry3d odom = Eigen::Isometry3d::Identity();
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    if (i > 0) odom = odom * (truth[i - 1].inverse() * truth[i]) * planar(0, 0, drift_deg);
+    Keyframe kf;
+    kf.key = {stream, i};
+    kf.stamp_ns = static_cast<std::int64_t>(i) * 100000000;
+    kf.odom_pose = odom;
+    kf.voxel_size = 3.0;
+    kf.distributions =
+        voxelizer.voxelize(litamin2::testing::transformed(scene, truth[i].inverse()));
+    out.push_back(std::move(kf));
+  }
+  return out;
+}
+
+MapperConfig street_config() {
+  MapperConfig config;
+  config.place.min_travel_gap = 20.0;  // the street is 60 m long
+  return config;
+}
+
+/// Largest position error of the stream's corrected keyframes against the truth, both taken
+/// relative to the first keyframe of `reference`.
+double worst_error(const Mapper& mapper, const std::string& stream,
+                   const std::vector<Eigen::Isometry3d>& truth, const Eigen::Isometry3d& origin) {
+  double worst = 0.0;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    const auto pose = mapper.pose({stream, i});
+    if (!pose) continue;
+    worst = std::max(
+        worst, (pose->pose.translation() - (origin.inverse() * truth[i]).translation()).norm());
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST(MappingMapper, DuplicatesAreIgnoredAndLateKeyframesChainByOdometry) {
+  const auto truth = out_and_back();
+  auto keyframes =
+      drive("a", std::vector<Eigen::Isometry3d>(truth.begin(), truth.begin() + 6), 0.0, 1);
+  MapperConfig config = street_config();
+  config.place.proximity_radius = 0.0;  // no loops: poses must equal the odometry
+  config.place.max_descriptor_distance = 0.0;
+  Mapper mapper(config);
+  for (std::size_t i : {3u, 0u, 5u, 1u, 4u, 2u}) {
+    EXPECT_EQ(mapper.add_keyframe(keyframes[i]), AddStatus::Added);
+  }
+  EXPECT_EQ(mapper.add_keyframe(keyframes[4]), AddStatus::Duplicate);
+  EXPECT_EQ(mapper.stats().keyframes, 6u);
+  EXPECT_EQ(mapper.stats().duplicates, 1u);
+  // The first keyframe to arrive (id 3) took its odometry pose and the others were chained to
+  // it, so every pose is the odometry pose.
+  for (const KeyframePose& p : mapper.poses()) {
+    EXPECT_TRUE(p.pose.isApprox(keyframes[p.key.id].odom_pose, 1e-9)) << p.key.id;
+    EXPECT_EQ(p.frame, "a");
+  }
+  const auto c = mapper.correction("a", 4);
+  ASSERT_TRUE(c);
+  EXPECT_EQ(c->key.id, 4u);
+  EXPECT_TRUE(c->pose.isApprox(Eigen::Isometry3d::Identity(), 1e-9));
+}
+
+TEST(MappingMapper, LoopsCorrectADriftingDrive) {
+  const auto truth = out_and_back();
+  const auto keyframes = drive("a", truth, 0.05, 1);
+  Mapper without(street_config());
+  MapperConfig off = street_config();
+  off.place.proximity_radius = 0.0;
+  off.place.max_descriptor_distance = 0.0;
+  Mapper odometry_only(off);
+  for (const auto& kf : keyframes) {
+    odometry_only.add_keyframe(kf);
+    without.add_keyframe(kf);
+    without.optimize();
+  }
+  const double before = worst_error(odometry_only, "a", truth, truth[0]);
+  const double after = worst_error(without, "a", truth, truth[0]);
+  EXPECT_GT(without.stats().verified, 5u) << without.stats().candidates << " candidates";
+  EXPECT_GT(before, 0.5);
+  EXPECT_LT(after, 0.6 * before) << "before " << before << " m";
+  // The global map is built from every keyframe at its corrected pose.
+  EXPECT_GT(without.global_map().size(), 100u);
+}
+
+TEST(MappingMapper, TwoVehiclesAtUnknownRelativePosesEndInOneFrame) {
+  const auto truth = out_and_back();
+  // Vehicle b drives the same street later, starting at the far end: its odometry frame is
+  // its own first pose, 60 m and 180 degrees from a's.
+  const std::vector<Eigen::Isometry3d> truth_b(truth.begin() + 21, truth.end());
+  const std::vector<Eigen::Isometry3d> truth_a(truth.begin(), truth.begin() + 21);
+  auto a = drive("a", truth_a, 0.0, 1);
+  auto b = drive("b", truth_b, 0.0, 2);
+  for (auto& kf : b) kf.stamp_ns += 1000000000;
+  Mapper mapper(street_config());
+  for (const auto& kf : a) mapper.add_keyframe(kf);
+  for (const auto& kf : b) mapper.add_keyframe(kf);
+  mapper.optimize();
+  const auto pose_b = mapper.pose({"b", 10});
+  ASSERT_TRUE(pose_b);
+  EXPECT_EQ(pose_b->frame, "a") << "b was not merged into a's frame";
+  // b's keyframes in a's frame match the truth relative to a's first pose.
+  EXPECT_LT(worst_error(mapper, "b", truth_b, truth_a[0]), 0.3);
+  EXPECT_LT(worst_error(mapper, "a", truth_a, truth_a[0]), 0.3);
+}
