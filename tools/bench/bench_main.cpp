@@ -9,6 +9,7 @@
 #include "litamin2/core/tracker.hpp"
 #include "litamin2/io/kitti_bin.hpp"
 #include "litamin2/io/kitti_sequence.hpp"
+#include "litamin2/mapping/pose_graph.hpp"
 
 #include <benchmark/benchmark.h>
 #include <tbb/task_arena.h>
@@ -134,5 +135,53 @@ BENCHMARK(BM_TrackerFrames)
     ->MinTime(2.0);
 
 }  // namespace
+
+/// Pose-graph optimisation time as the graph grows (issue 5): a drive of N keyframes 2 m apart
+/// around 400 m blocks, odometry with a small heading drift, and a loop edge wherever the drive
+/// passes a block corner it passed before (every 200 keyframes).
+void BM_PoseGraph(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  std::vector<Eigen::Isometry3d> truth;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  for (int i = 0; i < n; ++i) {
+    truth.push_back(pose);
+    Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+    step.translation().x() = 2.0;
+    if (i % 50 == 49)
+      step.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).matrix();
+    pose = pose * step;
+  }
+  std::vector<mapping::PoseGraphEdge> edges;
+  std::vector<Eigen::Isometry3d> initial = {truth[0]};
+  Eigen::Isometry3d drift = Eigen::Isometry3d::Identity();
+  drift.linear() = Eigen::AngleAxisd(1e-4, Eigen::Vector3d::UnitZ()).matrix();
+  for (int i = 1; i < n; ++i) {
+    mapping::PoseGraphEdge e;
+    e.from = i - 1;
+    e.to = i;
+    e.relative = truth[i - 1].inverse() * truth[i] * drift;
+    e.sigma << 0.02, 0.02, 0.02, 3e-4, 3e-4, 3e-4;
+    edges.push_back(e);
+    initial.push_back(initial.back() * e.relative);
+  }
+  for (int i = 200; i < n; i += 200) {
+    mapping::PoseGraphEdge e;
+    e.from = i - 200;
+    e.to = i;
+    e.relative = truth[i - 200].inverse() * truth[i];
+    e.sigma << 0.1, 0.1, 0.1, 0.009, 0.009, 0.009;
+    edges.push_back(e);
+  }
+  std::vector<bool> fixed(static_cast<std::size_t>(n), false);
+  fixed[0] = true;
+  for (auto _ : state) {
+    std::vector<Eigen::Isometry3d> poses = initial;
+    const auto result =
+        mapping::optimize_pose_graph(poses, fixed, edges, mapping::PoseGraphConfig{});
+    benchmark::DoNotOptimize(result);
+    state.counters["iterations"] = result.iterations;
+  }
+}
+BENCHMARK(BM_PoseGraph)->Arg(1000)->Arg(3000)->Arg(10000)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();
