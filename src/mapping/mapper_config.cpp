@@ -69,6 +69,7 @@ MapperConfig load_mapper_config(const std::string& path) {
 
 std::string mapper_config_to_yaml(const MapperConfig& c) {
   YAML::Emitter out;
+  out.SetDoublePrecision(12);
   out << YAML::BeginMap;
   out << YAML::Key << "place_recognition" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "rings" << YAML::Value << c.place.rings;

@@ -1,0 +1,42 @@
+// The mapper's YAML config: the shipped file holds the defaults, the emitted YAML reads back,
+// and bad keys and values are refused with messages naming them.
+
+#include "litamin2/core/config_error.hpp"
+#include "litamin2/mapping/mapper_config.hpp"
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+using namespace litamin2;
+using namespace litamin2::mapping;
+
+TEST(MappingConfig, ShippedFileHoldsTheDefaults) {
+  const MapperConfig shipped = load_mapper_config(LITAMIN2_SOURCE_DIR "/config/mapper.yaml");
+  EXPECT_EQ(mapper_config_to_yaml(shipped), mapper_config_to_yaml(MapperConfig{}));
+}
+
+TEST(MappingConfig, EmittedYamlReadsBack) {
+  MapperConfig config;
+  config.place.proximity_radius = 7.5;
+  config.verification.min_fitness = 0.7;
+  config.graph.threads = 2;
+  const std::string yaml = mapper_config_to_yaml(config);
+  EXPECT_EQ(mapper_config_to_yaml(mapper_config_from_yaml(YAML::Load(yaml))), yaml);
+}
+
+TEST(MappingConfig, BadKeysAndValuesAreNamed) {
+  auto message = [](const std::string& yaml) {
+    try {
+      mapper_config_from_yaml(YAML::Load(yaml));
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message("verification: {min_fitnes: 0.5}").find("verification.min_fitnes"),
+            std::string::npos);
+  EXPECT_NE(message("verification: {min_fitness: 1.5}").find("verification.min_fitness"),
+            std::string::npos);
+  EXPECT_NE(message("pose_graph: {threads: many}").find("pose_graph.threads"), std::string::npos);
+  EXPECT_NE(message("map_voxel_size: -1").find("map_voxel_size"), std::string::npos);
+}
