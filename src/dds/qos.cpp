@@ -20,6 +20,16 @@ void common(Qos& qos, fdds::ReliabilityQosPolicyKind reliability,
   qos.endpoint().history_memory_policy = rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
 }
 
+/// Keyed keep-all topics (one instance per stream): Fast DDS's default resource limits (10
+/// instances, 400 samples per instance, 5000 in all) would refuse the 11th stream's patches.
+/// Large finite limits: Fast DDS 2.9 requires max_samples unlimited when the others are, and
+/// its keep-all writer then refuses every write.
+void unlimited(fdds::ResourceLimitsQosPolicy& limits) {
+  limits.max_instances = 10'000;
+  limits.max_samples_per_instance = 100'000;
+  limits.max_samples = 1'000'000'000;
+}
+
 }  // namespace
 
 fdds::DataReaderQos points_reader_qos(bool reliable, std::int32_t depth) {
@@ -67,6 +77,7 @@ fdds::DataWriterQos map_patches_writer_qos() {
   fdds::DataWriterQos qos = fdds::DATAWRITER_QOS_DEFAULT;
   common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::TRANSIENT_LOCAL_DURABILITY_QOS,
          fdds::KEEP_ALL_HISTORY_QOS, 1);
+  unlimited(qos.resource_limits());
   return qos;
 }
 
@@ -74,6 +85,7 @@ fdds::DataReaderQos map_patches_reader_qos() {
   fdds::DataReaderQos qos = fdds::DATAREADER_QOS_DEFAULT;
   common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::TRANSIENT_LOCAL_DURABILITY_QOS,
          fdds::KEEP_ALL_HISTORY_QOS, 1);
+  unlimited(qos.resource_limits());
   return qos;
 }
 

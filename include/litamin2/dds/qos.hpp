@@ -26,6 +26,7 @@ eprosima::fastdds::dds::DataWriterQos odom_writer_qos(std::int32_t depth = 100);
 eprosima::fastdds::dds::DataReaderQos odom_reader_qos(std::int32_t depth = 100);
 /// rt/litamin2/map_patches: reliable, transient-local, keep-all (per stream instance; a late
 /// reader receives every patch still held by the writer).
+/// Resource limits unlimited: any number of streams and of patches per stream.
 eprosima::fastdds::dds::DataWriterQos map_patches_writer_qos();
 eprosima::fastdds::dds::DataReaderQos map_patches_reader_qos();
 /// rt/litamin2/status: reliable, volatile, keep-last `depth`.

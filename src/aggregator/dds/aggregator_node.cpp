@@ -63,6 +63,11 @@ fdds::DataWriterQos latest_per_instance_qos() {
   qos.durability().kind = fdds::TRANSIENT_LOCAL_DURABILITY_QOS;
   qos.history().kind = fdds::KEEP_LAST_HISTORY_QOS;
   qos.history().depth = 1;
+  // One instance per stream: Fast DDS's default limit of 10 instances would refuse the 11th.
+  // Finite limits: with unlimited ones Fast DDS 2.9 refuses every write.
+  qos.resource_limits().max_instances = 10'000;
+  qos.resource_limits().max_samples_per_instance = 1;
+  qos.resource_limits().max_samples = 10'000;
   qos.endpoint().history_memory_policy =
       eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
   return qos;
