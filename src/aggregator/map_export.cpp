@@ -7,6 +7,8 @@
 #include <Eigen/Eigenvalues>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <system_error>
 
 namespace litamin2::aggregator {
@@ -81,9 +83,20 @@ ExportResult export_store(const ExportOptions& options) {
     result.files.push_back(options.map_ply);
   }
   if (!options.trajectories_dir.empty()) {
-    for (const StreamPoses& s : all_stream_poses(mapper))
+    // frames.txt: which frame each stream's trajectory is in (the map frame once a loop has
+    // joined it to the map's anchor stream, else its own group's anchor's odometry frame).
+    std::ostringstream frames;
+    frames << "# stream anchor_stream in_map_frame keyframes\n";
+    for (const StreamPoses& s : all_stream_poses(mapper)) {
       for (std::string& f : write_trajectories(options.trajectories_dir, s))
         result.files.push_back(std::move(f));
+      frames << s.stream << ' ' << s.anchor << ' ' << (s.in_map_frame ? 1 : 0) << ' '
+             << s.keyframes.size() << '\n';
+    }
+    const std::string path =
+        (std::filesystem::path(options.trajectories_dir) / "frames.txt").string();
+    std::ofstream(path) << frames.str();
+    result.files.push_back(path);
   }
   return result;
 }

@@ -59,6 +59,7 @@ class LoopClosure {
       kf.voxel_size = tracker.config().voxelizer.voxel_size;
       kf.distributions = tracker.last_distributions();
       std::vector<mapping::LoopEdge> loops;
+      frame_of_keyframe_.push_back(keyframe_of_frame_.size());
       mapper_.add_keyframe(std::move(kf), &loops);
       if (!loops.empty()) mapper_.optimize();
       ++next_id_;
@@ -80,6 +81,17 @@ class LoopClosure {
     return out;
   }
 
+  /// One line per loop: the two keyframes' scan indices (counted from the first scan run),
+  /// fitness and RMS surface distance.
+  void write_loops(const std::string& path) const {
+    std::ofstream out(path);
+    out << "# from_scan to_scan fitness rmse_m\n";
+    for (const mapping::LoopEdge& loop : mapper_.loops()) {
+      out << frame_of_keyframe_[loop.from.id] << ' ' << frame_of_keyframe_[loop.to.id] << ' '
+          << loop.fitness << ' ' << loop.rmse << '\n';
+    }
+  }
+
   const mapping::Mapper& mapper() const { return mapper_; }
   double milliseconds() const { return ms_; }
 
@@ -87,6 +99,7 @@ class LoopClosure {
   mapping::Mapper mapper_;
   std::uint64_t next_id_ = 0;
   std::vector<std::uint64_t> keyframe_of_frame_;
+  std::vector<std::size_t> frame_of_keyframe_;
   double ms_ = 0.0;
 };
 
@@ -206,6 +219,7 @@ int run(const Options& options) {
     poses = loop_closure->corrected(poses);
     std::ofstream(out / "mapper_config.yaml")
         << mapping::mapper_config_to_yaml(loop_closure->mapper().config());
+    loop_closure->write_loops((out / "loops.txt").string());
   }
   for (std::size_t i = 0; i < poses.size(); ++i)
     timed.push_back({sequence.timestamp(first + i), poses[i]});

@@ -21,7 +21,7 @@ struct PlaceRecognitionConfig {
   /// Candidates per query kept from the ring-key search before the full descriptor distance.
   int ring_key_candidates = 10;
   /// Candidates with a descriptor distance above this are rejected (0 = identical, 1 = unrelated).
-  double max_descriptor_distance = 0.35;
+  double max_descriptor_distance = 0.45;
   /// Keyframes of the same stream closer than this along the trajectory are never loop
   /// candidates (they are neighbours in the odometry chain), metres.
   double min_travel_gap = 50.0;
@@ -29,7 +29,7 @@ struct PlaceRecognitionConfig {
   /// to the query's current pose estimate is verified when it is closer than this, metres
   /// (0 = off): drift is small enough that a revisit is found by position, and the estimate
   /// gives the registration a starting pose.
-  double proximity_radius = 15.0;
+  double proximity_radius = 30.0;
 };
 
 /// Verification of a candidate by LiTAMIN2 registration of the two keyframes' patches
@@ -48,9 +48,9 @@ struct LoopVerificationConfig {
   /// ... and the root mean square of those distances is at most this, metres.
   double max_rmse = 0.2;
   /// Standard deviations the loop edge's information is built from: rotation (degrees) ...
-  double rotation_sigma_deg = 0.5;
+  double rotation_sigma_deg = 0.1;
   /// ... and translation (metres).
-  double translation_sigma = 0.1;
+  double translation_sigma = 0.05;
 };
 
 /// Pose graph optimisation (pose_graph.hpp).
