@@ -27,6 +27,7 @@ AggregatorCore::AggregatorCore(const std::string& store_path, store::OpenMode mo
 
 IngestResult AggregatorCore::ingest(std::vector<mapping::Keyframe>& batch) {
   IngestResult result;
+  double t = thread_cpu_seconds();
   // Canonical order, and one keyframe per key (the first received wins).
   std::stable_sort(batch.begin(), batch.end(), mapping::canonical_before);
   std::vector<std::size_t> fresh;
@@ -41,6 +42,9 @@ IngestResult AggregatorCore::ingest(std::vector<mapping::Keyframe>& batch) {
     to_store.push_back(&batch[i]);
   }
   duplicates_ += result.duplicates;
+  double now = thread_cpu_seconds();
+  cpu_.sort_s += now - t;
+  t = now;
   if (fresh.empty()) {
     batch.clear();
     return result;
@@ -51,6 +55,9 @@ IngestResult AggregatorCore::ingest(std::vector<mapping::Keyframe>& batch) {
   store_.insert_keyframes(to_store);
   result.store_ms = elapsed_ms(t0);
   const auto t1 = std::chrono::steady_clock::now();
+  now = thread_cpu_seconds();
+  cpu_.store_s += now - t;
+  t = now;
 
   std::vector<mapping::LoopEdge> loops;
   for (std::size_t i : fresh) {
@@ -59,14 +66,24 @@ IngestResult AggregatorCore::ingest(std::vector<mapping::Keyframe>& batch) {
       const Eigen::Matrix3d raw = d.cov;
       regularize_for_terms(regularizer(), raw, d.cov, d.shape_cov, d.shape_cov_inv);
     }
+    now = thread_cpu_seconds();
+    cpu_.regularize_s += now - t;
+    t = now;
     result.streams.insert(keyframe.key.stream);
     result.keys.push_back(keyframe.key);
     if (mapper_.add_keyframe(std::move(keyframe), &loops) == mapping::AddStatus::Added)
       ++result.added;
+    now = thread_cpu_seconds();
+    cpu_.add_keyframe_s += now - t;
+    t = now;
   }
   result.new_loops = loops.size();
   result.optimization = mapper_.optimize();
+  now = thread_cpu_seconds();
+  cpu_.optimize_s += now - t;
+  t = now;
   if (result.optimization.ran || !loops.empty()) save_graph();
+  cpu_.save_graph_s += thread_cpu_seconds() - t;
   result.mapper_ms = elapsed_ms(t1);
   batch.clear();
   return result;

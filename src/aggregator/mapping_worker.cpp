@@ -1,5 +1,7 @@
 #include "litamin2/aggregator/mapping_worker.hpp"
 
+#include "litamin2/core/stopwatch.hpp"
+
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -94,6 +96,8 @@ void MappingWorker::process(std::vector<mapping::Keyframe>& batch) {
   status_.loops = mapper.loops().size();
   status_.optimizations = mapper.stats().optimizations;
   ++status_.batches;
+  status_.ingest_cpu = core_.cpu();
+  status_.mapper_cpu = mapper.cpu();
   status_.last_store_ms = r.store_ms;
   status_.last_mapper_ms = r.mapper_ms;
   if (r.optimization.ran) status_.last_optimize_ms = r.optimization.milliseconds;
@@ -107,17 +111,23 @@ void MappingWorker::process(std::vector<mapping::Keyframe>& batch) {
 void MappingWorker::publish(bool force) {
   const auto now = Clock::now();
   if (!dirty_streams_.empty() && (force || now >= next_poses_)) {
+    const double t = thread_cpu_seconds();
     const std::vector<std::string> streams(dirty_streams_.begin(), dirty_streams_.end());
     for (const StreamPoses& s : stream_poses(core_.mapper(), streams)) sink_.publish_poses(s);
     dirty_streams_.clear();
     next_poses_ = now + seconds(config_.publish.poses_period_s);
+    std::lock_guard lock(mutex_);
+    status_.poses_cpu_s += thread_cpu_seconds() - t;
   }
   if (summary_dirty_ && (force || now >= next_summary_)) {
+    const double t = thread_cpu_seconds();
     const std::vector<Distribution> map = core_.mapper().global_map();
     sink_.publish_summary(map_summary(core_.mapper(), map,
                                       static_cast<std::size_t>(config_.publish.summary_max_means)));
     summary_dirty_ = false;
     next_summary_ = now + seconds(config_.publish.summary_period_s);
+    std::lock_guard lock(mutex_);
+    status_.summary_cpu_s += thread_cpu_seconds() - t;
   }
 }
 

@@ -56,6 +56,7 @@ struct Mapper::Impl {
   /// loops[i] went through one optimisation and was consistent: it gets the robust loss.
   std::vector<bool> loop_checked;
   MapperStats stats;
+  MapperCpu cpu;
   int loops_since_optimize = 0;
   bool dirty = false;
 
@@ -168,12 +169,18 @@ struct Mapper::Impl {
     const std::string group = anchor_of(query.keyframe.key.stream);
     const Entry* best = nullptr;
     double best_sq = radius * radius;
-    for (const auto& [key, entry] : entries) {
-      if (&entry == &query || anchor_of(key.stream) != group || !eligible(query, entry)) continue;
-      const double d_sq = (entry.pose.translation() - query.pose.translation()).squaredNorm();
-      if (d_sq < best_sq) {
-        best_sq = d_sq;
-        best = &entry;
+    // The group's streams' entries, in key order (streams by name, then ids).
+    for (const auto& [name, stream] : streams) {
+      if (anchor_of(name) != group) continue;
+      for (auto it = entries.lower_bound(KeyframeKey{name, 0});
+           it != entries.end() && it->first.stream == name; ++it) {
+        const Entry& entry = it->second;
+        if (&entry == &query || !eligible(query, entry)) continue;
+        const double d_sq = (entry.pose.translation() - query.pose.translation()).squaredNorm();
+        if (d_sq < best_sq) {
+          best_sq = d_sq;
+          best = &entry;
+        }
       }
     }
     if (!best) return std::nullopt;
@@ -184,14 +191,24 @@ struct Mapper::Impl {
   /// pose estimate first, then the descriptor's candidate; the first verified one is a loop.
   void detect_loops(const Entry& query, std::vector<LoopEdge>* new_loops) {
     std::vector<std::pair<const Entry*, Eigen::Isometry3d>> candidates;
+    double t = thread_cpu_seconds();
     if (auto c = proximity_candidate(query)) candidates.push_back(*c);
+    double now = thread_cpu_seconds();
+    cpu.proximity_s += now - t;
+    t = now;
     // The descriptor's candidate may be the same keyframe: its yaw is still another start.
     if (auto c = descriptor_candidate(query)) candidates.push_back(*c);
+    now = thread_cpu_seconds();
+    cpu.descriptor_search_s += now - t;
+    t = now;
     for (const auto& [candidate, initial] : candidates) {
       ++stats.candidates;
       const VoxelMap submap = submap_of(*candidate);
       const LoopVerification v =
           verify_loop(query.keyframe.distributions, submap, initial, config.verification);
+      now = thread_cpu_seconds();
+      cpu.verification_s += now - t;
+      t = now;
       if (!v.accepted) {
         ++stats.rejected;
         continue;
@@ -353,7 +370,10 @@ AddStatus Mapper::add_keyframe(Keyframe keyframe, std::vector<LoopEdge>* new_loo
   }
   const KeyframeKey key = keyframe.key;
   Impl::Entry entry;
+  const double t0 = thread_cpu_seconds();
   entry.descriptor = make_place_descriptor(keyframe.distributions, m.config.place);
+  const double t1 = thread_cpu_seconds();
+  m.cpu.descriptor_s += t1 - t0;
   entry.keyframe = std::move(keyframe);
   // Chain from a neighbour before this keyframe is listed among the stream's ids.
   entry.pose = m.initial_pose(entry.keyframe);
@@ -362,6 +382,7 @@ AddStatus Mapper::add_keyframe(Keyframe keyframe, std::vector<LoopEdge>* new_loo
   m.update_path_lengths(stream_it->second, name);
   ++m.stats.keyframes;
   m.dirty = true;
+  m.cpu.chain_s += thread_cpu_seconds() - t1;
   m.detect_loops(stored, new_loops);
   return AddStatus::Added;
 }
@@ -371,6 +392,7 @@ OptimizeSummary Mapper::optimize() {
   OptimizeSummary summary;
   if (m.loops_since_optimize == 0) return summary;
   const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = thread_cpu_seconds();
   PoseGraphResult result = m.optimize_once(summary);
   // New loops that the graph cannot accommodate are dropped and the graph solved again
   // without them, from the poses before.
@@ -397,6 +419,7 @@ OptimizeSummary Mapper::optimize() {
   summary.initial_cost = result.initial_cost;
   summary.final_cost = result.final_cost;
   summary.milliseconds = elapsed_ms(start);
+  m.cpu.optimize_s += thread_cpu_seconds() - cpu_start;
   return summary;
 }
 
@@ -444,6 +467,10 @@ MapperStats Mapper::stats() const {
   MapperStats s = impl_->stats;
   s.streams = impl_->streams.size();
   return s;
+}
+
+MapperCpu Mapper::cpu() const {
+  return impl_->cpu;
 }
 
 const MapperConfig& Mapper::config() const {

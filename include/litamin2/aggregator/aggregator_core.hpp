@@ -35,6 +35,22 @@ struct IngestResult {
   double mapper_ms = 0.0;
 };
 
+/// CPU time (of the calling thread) spent by ingest() in its stages since construction, seconds.
+struct IngestCpu {
+  /// Duplicate filtering and canonical ordering.
+  double sort_s = 0.0;
+  /// The store transaction of the new keyframes.
+  double store_s = 0.0;
+  /// Covariance regularisation of the new keyframes (what the store applies on load).
+  double regularize_s = 0.0;
+  /// Mapper::add_keyframe (stages in Mapper::cpu()).
+  double add_keyframe_s = 0.0;
+  /// Mapper::optimize.
+  double optimize_s = 0.0;
+  /// Storing the loop edges and corrected poses after loops or an optimisation.
+  double save_graph_s = 0.0;
+};
+
 class AggregatorCore {
  public:
   /// Called during recovery with (keyframes added, keyframes in total).
@@ -55,6 +71,7 @@ class AggregatorCore {
   const store::KeyframeStore& store() const { return store_; }
   std::size_t recovered() const { return recovered_; }
   std::size_t duplicates() const { return duplicates_; }
+  const IngestCpu& cpu() const { return cpu_; }
 
   /// What the store does to a distribution's covariance on load, applied to freshly received
   /// keyframes so that a live mapper sees exactly what a recovered one would.
@@ -67,6 +84,7 @@ class AggregatorCore {
   mapping::Mapper mapper_;
   std::size_t recovered_ = 0;
   std::size_t duplicates_ = 0;
+  IngestCpu cpu_;
 };
 
 }  // namespace litamin2::aggregator

@@ -40,7 +40,14 @@ struct WorkerStatus {
   double last_mapper_ms = 0.0;
   double last_optimize_ms = 0.0;
   std::map<std::string, StreamCounts> streams;
-  /// The store failed (disk full, I/O error): the process must exit and be restarted.
+  /// CPU time of the mapping thread by stage, seconds: ingest (store, mapper) ...
+  IngestCpu ingest_cpu;
+  mapping::MapperCpu mapper_cpu;
+  /// ... building and publishing the corrected poses ...
+  double poses_cpu_s = 0.0;
+  /// ... building (the global map) and publishing the map summary.
+  double summary_cpu_s = 0.0;
+  /// The store failed failed (disk full, I/O error): the process must exit and be restarted.
   std::string error;
 };
 

@@ -53,6 +53,22 @@ struct MapperStats {
   std::size_t optimizations = 0;
 };
 
+/// CPU time (of the calling thread) spent in the mapper's stages since construction, seconds.
+struct MapperCpu {
+  /// Place descriptors of new keyframes.
+  double descriptor_s = 0.0;
+  /// Insertion into the keyframe chain: initial pose, path lengths.
+  double chain_s = 0.0;
+  /// Proximity candidate search (nearest keyframe by pose estimate).
+  double proximity_s = 0.0;
+  /// Descriptor candidate search (ring-key shortlist and full descriptor distances).
+  double descriptor_search_s = 0.0;
+  /// Loop verification (candidate submap and registration).
+  double verification_s = 0.0;
+  /// Pose-graph optimisation.
+  double optimize_s = 0.0;
+};
+
 enum class AddStatus { Added, Duplicate };
 
 class Mapper {
@@ -81,6 +97,7 @@ class Mapper {
                                          std::optional<std::uint64_t> id = std::nullopt) const;
   const std::vector<LoopEdge>& loops() const;
   MapperStats stats() const;
+  MapperCpu cpu() const;
   const MapperConfig& config() const;
 
   /// Distributions of the global map in the frame of the first stream, built from every

@@ -225,6 +225,17 @@ void AggregatorNode::shutdown() {
   worker_->stop();
   publish_status(Clock::now());
   spdlog::info("shut down: {} queued patch(es) committed; {}", queued, summary());
+  const WorkerStatus w = worker_->status();
+  const IngestCpu& in = w.ingest_cpu;
+  const mapping::MapperCpu& m = w.mapper_cpu;
+  spdlog::info(
+      "CPU by stage, s: DDS take {:.2f}, conversion {:.2f}; sort {:.2f}, store {:.2f}, "
+      "regularize {:.2f}, add_keyframe {:.2f} (descriptor {:.2f}, chain {:.2f}, proximity "
+      "{:.2f}, descriptor search {:.2f}, verification {:.2f}), optimize {:.2f}, save graph "
+      "{:.2f}; poses {:.2f}, summary {:.2f}",
+      listener_.take_cpu_s(), listener_.convert_cpu_s(), in.sort_s, in.store_s, in.regularize_s,
+      in.add_keyframe_s, m.descriptor_s, m.chain_s, m.proximity_s, m.descriptor_search_s,
+      m.verification_s, in.optimize_s, in.save_graph_s, w.poses_cpu_s, w.summary_cpu_s);
 }
 
 }  // namespace litamin2::aggregator

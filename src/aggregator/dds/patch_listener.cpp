@@ -1,5 +1,6 @@
 #include "litamin2/aggregator/dds/patch_listener.hpp"
 
+#include "litamin2/core/stopwatch.hpp"
 #include "litamin2/dds/map_patch_conversion.hpp"
 #include "litamin2/msg/MapPatch.h"
 
@@ -11,14 +12,31 @@ namespace litamin2::aggregator {
 
 namespace fdds = eprosima::fastdds::dds;
 
+namespace {
+
+std::uint64_t ns(double seconds) {
+  return static_cast<std::uint64_t>(seconds * 1e9);
+}
+
+}  // namespace
+
 void PatchListener::on_data_available(fdds::DataReader* reader) {
   litamin2::msg::MapPatch msg;
   fdds::SampleInfo info;
   std::string error;
-  while (reader->take_next_sample(&msg, &info) == ReturnCode_t::RETCODE_OK) {
+  double t = thread_cpu_seconds();
+  for (;;) {
+    const bool taken = reader->take_next_sample(&msg, &info) == ReturnCode_t::RETCODE_OK;
+    const double taken_at = thread_cpu_seconds();
+    take_cpu_ns_ += ns(taken_at - t);
+    if (!taken) break;
+    t = taken_at;
     if (!info.valid_data) continue;
     ++received_;
     std::optional<mapping::Keyframe> keyframe = dds::from_map_patch(msg, &error);
+    const double converted_at = thread_cpu_seconds();
+    convert_cpu_ns_ += ns(converted_at - t);
+    t = converted_at;
     if (!keyframe) {
       ++rejected_;
       if (const auto suppressed = bad_patch_log_.allow())

@@ -4,7 +4,10 @@
 //    MapPatch messages (the daemon's conversion) for each --stream, optionally only a range of
 //    keyframe ids, twice each (--duplicate), in reverse order (--reverse), at a limited rate;
 //    or (--synthetic N) patches of N random distributions for --streams-count streams at
-//    --rate patches per second per stream for --duration seconds (the ingest benchmark).
+//    --rate patches per second per stream for --duration seconds (the ingest benchmark);
+//    with --scene each stream instead drives straight at --speed m/s through its own random
+//    scene (ground and objects of random heights) and publishes the N distributions within
+//    50 m around it, so that places differ as real ones do.
 //    The writer is reliable, transient-local, keep-all, and stays up --linger seconds.
 //  poses: reads rt/litamin2/keyframe_poses until every --stream has --expect keyframes (exit 0)
 //    or --timeout passes (exit 1); prints each stream's count and frame.
@@ -98,6 +101,43 @@ std::vector<Distribution> synthetic(std::size_t n, std::mt19937& rng) {
   return out;
 }
 
+/// A stream's private random world along x in [x0, x1), |y| < 50: per 100 m x 100 m, n / 2
+/// ground distributions and n / 20 objects of 10 distributions stacked to a random height.
+std::vector<Distribution> scene(double x0, double x1, std::size_t n, std::mt19937& rng) {
+  std::uniform_real_distribution<double> y(-50.0, 50.0), x(x0, x1), height(1.0, 12.0);
+  std::normal_distribution<double> jitter(0.0, 0.3);
+  const double windows = (x1 - x0) / 100.0;
+  std::vector<Distribution> out;
+  auto add = [&](const Eigen::Vector3d& mean) {
+    Distribution d;
+    d.mean = mean;
+    d.cov = Eigen::Vector3d(0.2, 0.1, 0.01).asDiagonal();
+    d.count = 20;
+    out.push_back(d);
+  };
+  for (std::size_t i = 0; i < static_cast<std::size_t>(windows * n / 2); ++i)
+    add({x(rng), y(rng), 0.1 * jitter(rng)});
+  for (std::size_t i = 0; i < static_cast<std::size_t>(windows * n / 20); ++i) {
+    const Eigen::Vector3d base(x(rng), y(rng), 0.0);
+    const double h = height(rng);
+    for (int k = 0; k < 10; ++k)
+      add(base + Eigen::Vector3d(jitter(rng), jitter(rng), h * (k + 1) / 10.0));
+  }
+  std::sort(out.begin(), out.end(),
+            [](const Distribution& a, const Distribution& b) { return a.mean.x() < b.mean.x(); });
+  return out;
+}
+
+/// The part of `world` (sorted by x) within 50 m of (x, 0) in x and y, in the frame at x.
+std::vector<Distribution> scene_patch(const std::vector<Distribution>& world, double x) {
+  auto by_x = [](const Distribution& d, double v) { return d.mean.x() < v; };
+  auto first = std::lower_bound(world.begin(), world.end(), x - 50.0, by_x);
+  auto last = std::lower_bound(first, world.end(), x + 50.0, by_x);
+  std::vector<Distribution> out(first, last);
+  for (Distribution& d : out) d.mean.x() -= x;
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -115,7 +155,8 @@ int main(int argc, char** argv) {
   int streams_count = 0;
   std::int64_t from = 0, to = -1;
   bool duplicate = false, reverse = false;
-  double rate = 0.0, linger = 0.0, duration = 10.0, wait_reader = 20.0;
+  double rate = 0.0, linger = 0.0, duration = 10.0, wait_reader = 20.0, speed = 10.0;
+  bool with_scene = false;
   std::string count_file;
   publish->add_option("--sequence", sequence, "scan folder (litamin2-sim output)");
   publish->add_option("--frames", frames, "scans of the sequence to track (0 = all)");
@@ -130,6 +171,8 @@ int main(int argc, char** argv) {
   publish->add_option("--synthetic", synthetic_n, "random patches of N distributions");
   publish->add_option("--streams-count", streams_count, "--synthetic: streams s000, s001, ...");
   publish->add_option("--duration", duration, "--synthetic: seconds of publishing");
+  publish->add_flag("--scene", with_scene, "--synthetic: patches of a moving stream's own scene");
+  publish->add_option("--speed", speed, "--scene: metres per second");
   publish->add_option("--count-file", count_file, "write the number of keyframes per stream");
 
   CLI::App* poses = app.add_subcommand("poses", "wait for corrected keyframe poses");
@@ -207,25 +250,38 @@ int main(int argc, char** argv) {
     // The benchmark: every stream one patch per 1/rate seconds, for `duration` seconds.
     std::mt19937 rng(7);
     std::vector<litamin2::msg::MapPatch> templates;
+    std::vector<std::vector<Distribution>> worlds;
+    const double period = rate > 0 ? 1.0 / rate : 1.0;
     for (int s = 0; s < streams_count; ++s) {
       char id[16];
       std::snprintf(id, sizeof id, "s%03d", s);
+      if (with_scene)
+        worlds.push_back(scene(-60.0, speed * (duration + period) + 60.0, synthetic_n, rng));
       templates.push_back(litamin2::dds::to_map_patch(
           {id, 0}, kEpochNs, std::string(id) + "/odom", Eigen::Isometry3d::Identity(),
-          mapping::Matrix6d::Identity() * 1e-4, 1.0, synthetic(synthetic_n, rng)));
+          mapping::Matrix6d::Identity() * 1e-4, 1.0,
+          with_scene ? scene_patch(worlds.back(), 0.0) : synthetic(synthetic_n, rng)));
     }
-    const double period = rate > 0 ? 1.0 / rate : 1.0;
     const auto start = Clock::now();
     for (std::uint64_t k = 0;; ++k) {
       const auto due = start + std::chrono::duration_cast<Clock::duration>(
                                    std::chrono::duration<double>(k * period));
       if (due - start > std::chrono::duration<double>(duration)) break;
       std::this_thread::sleep_until(due);
-      for (auto& msg : templates) {
+      for (std::size_t s = 0; s < templates.size(); ++s) {
+        litamin2::msg::MapPatch& msg = templates[s];
+        if (with_scene) {
+          const double x = speed * static_cast<double>(k) * period;
+          Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+          pose.translation().x() = x;
+          msg = litamin2::dds::to_map_patch({msg.stream_id(), k}, kEpochNs, msg.frame_id(), pose,
+                                            mapping::Matrix6d::Identity() * 1e-4, 1.0,
+                                            scene_patch(worlds[s], x));
+        }
         msg.keyframe_id(k);
         litamin2::dds::ns_to_stamp(kEpochNs + static_cast<std::int64_t>(k * period * 1e9),
                                    msg.stamp().sec(), msg.stamp().nanosec());
-        msg.pose().position().x(static_cast<double>(k));
+        if (!with_scene) msg.pose().position().x(static_cast<double>(k));
         if (writer->write(&msg)) ++published;
       }
     }

@@ -28,6 +28,10 @@ class PatchListener : public eprosima::fastdds::dds::DataReaderListener {
   std::uint64_t rejected() const { return rejected_; }
   std::uint64_t samples_lost() const { return samples_lost_; }
   int writers() const { return writers_; }
+  /// CPU time of the DDS thread in the listener, seconds: taking samples (deserialisation) ...
+  double take_cpu_s() const { return 1e-9 * static_cast<double>(take_cpu_ns_); }
+  /// ... and converting them to keyframes (plus queueing).
+  double convert_cpu_s() const { return 1e-9 * static_cast<double>(convert_cpu_ns_); }
 
  private:
   PatchQueue& queue_;
@@ -36,6 +40,8 @@ class PatchListener : public eprosima::fastdds::dds::DataReaderListener {
   std::atomic<std::uint64_t> rejected_{0};
   std::atomic<std::uint64_t> samples_lost_{0};
   std::atomic<int> writers_{0};
+  std::atomic<std::uint64_t> take_cpu_ns_{0};
+  std::atomic<std::uint64_t> convert_cpu_ns_{0};
 };
 
 }  // namespace litamin2::aggregator
