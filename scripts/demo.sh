@@ -1,19 +1,26 @@
 #!/usr/bin/env bash
 # The main job on its built-in default: installs what is missing, builds (Release), simulates a
-# small fleet (2 vehicles on the same streets of the simulator's built-in loop, HDL-64 scans),
-# replays it over DDS into litamin2d (loopback-only transport: no traffic leaves this machine),
-# checks every odometry message against the offline tool, prints per-stream accuracy and
-# throughput, and shuts everything down with SIGTERM. Output in ${OUT:-out/demo}.
-# Env: FRAMES (default 150 per vehicle), DOMAIN (DDS domain, default 42), RATE (Hz, default 10).
+# small fleet (2 vehicles on the same streets of the simulator's built-in loop, HDL-64 scans,
+# the second one driving the other way), replays it over DDS into litamin2d (loopback-only
+# transport: no traffic leaves this machine), checks every odometry message against the offline
+# tool, feeds litamin2d's map patches to litamin2-aggregator (loop closure between the vehicles,
+# pose graph, SQLite store), exports the global map (PLY) and trajectories, plots them (PNG) and
+# prints per-stream drift and ATE before and after loop closure, and the error of the merged
+# frame; everything is shut down with SIGTERM. Output in ${OUT:-out/demo}.
+# Env: FRAMES (default 387 per vehicle: the whole built-in loop), DOMAIN (DDS domain, default 42), RATE (Hz, default 10),
+# MERGE_BOUND (metres, default 1.0: largest allowed error of a merged vehicle's keyframes in the
+# first vehicle's frame), BUILD_DIR, DEMO_SKIP_BUILD.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-"$root/scripts/install-deps.sh"
-"$root/scripts/build.sh"
+if [ -z "${DEMO_SKIP_BUILD:-}" ]; then  # the fleet ctest runs it on an existing build
+  "$root/scripts/install-deps.sh"
+  "$root/scripts/build.sh"
+fi
 build="${BUILD_DIR:-$root/build}"
 bin="$build/tools"
 probe="$build/tests/integration/daemon_probe"
 out=${OUT:-$root/out/demo}
-frames=${FRAMES:-150}
+frames=${FRAMES:-387}
 domain=${DOMAIN:-42}
 rate=${RATE:-10}
 streams=(vehicle_00 vehicle_01)
@@ -40,12 +47,25 @@ queue_depth: 100
 outputs: {status_period_s: 1.0}
 YAML
 
+cat > aggregator.yaml <<YAML
+# Demo config: the shipped default on domain $domain, with the store in the demo's folder.
+dds: {domain: $domain, profile: loopback}
+store: {path: aggregator.db}
+watchdog: {enabled: false}
+YAML
+
 daemon_pid=""
 probe_pid=""
+aggregator_pid=""
 cleanup() {
-  for pid in $probe_pid $daemon_pid; do kill -9 "$pid" 2>/dev/null || true; done
+  for pid in $probe_pid $daemon_pid $aggregator_pid; do kill -9 "$pid" 2>/dev/null || true; done
 }
 trap cleanup EXIT
+
+echo "== starting litamin2-aggregator (store $out/aggregator.db)"
+rm -f aggregator.db aggregator.db-wal aggregator.db-shm
+"$bin/aggregator/litamin2-aggregator" --config aggregator.yaml > aggregator.log 2>&1 &
+aggregator_pid=$!
 
 echo "== starting litamin2d (domain $domain, loopback profile) and an odometry subscriber"
 "$bin/litamin2d/litamin2d" --config litamin2d.yaml > daemon.log 2>&1 &
@@ -75,6 +95,28 @@ daemon_rc=0
 wait "$daemon_pid" || daemon_rc=$?
 daemon_pid=""
 
+expected=0
+for s in "${streams[@]}"; do
+  expected=$((expected + $(grep -o '"keyframes": [0-9]*' "offline_$s/stats.json" | awk '{print $2}')))
+done
+echo "== waiting for the aggregator to store all $expected keyframes, then SIGTERM"
+stored=0
+for _ in $(seq 1 120); do
+  stored=$(sqlite3 -readonly aggregator.db "select count(*) from keyframes" 2>/dev/null || echo 0)
+  [ "$stored" -ge "$expected" ] && break
+  sleep 0.5
+done
+kill -TERM "$aggregator_pid"
+aggregator_rc=0
+wait "$aggregator_pid" || aggregator_rc=$?
+aggregator_pid=""
+
+echo "== export: global map and trajectories"
+rm -rf trajectories report
+"$bin/aggregator/litamin2-aggregator" export --store aggregator.db --map map.ply \
+  --trajectories trajectories > export.log 2>&1 || { cat export.log; exit 1; }
+sed 's/^/  /' export.log
+
 echo
 echo "== results"
 grep -E "^stream |^status " probe.log | sed 's/^/  /'
@@ -92,6 +134,19 @@ for s in "${streams[@]}"; do
 done
 printf '  replay + processing: %.1f s for %d x %d frames at %s Hz\n' "$(echo "$end - $start" | bc)" \
   ${#streams[@]} "$frames" "$rate"
-echo "  logs and poses: $out (daemon.log, probe.log, received_*, offline_*)"
-[ "$probe_rc" -eq 0 ] && [ "$daemon_rc" -eq 0 ] || { echo "demo FAILED (probe $probe_rc, daemon $daemon_rc)"; exit 1; }
+echo "  aggregator: $stored of $expected keyframes stored; export: $(head -1 export.log | sed 's/^[^:]*: //')"
+echo
+echo "== per-stream drift and ATE before (litamin2d odometry) and after loop closure (aggregator)"
+report_rc=0
+python3 "$root/scripts/lib/fleet_report.py" "$bin/eval/litamin2-eval" fleet received_ trajectories \
+  report "${MERGE_BOUND:-1.0}" || report_rc=$?
+for s in "${streams[@]}"; do
+  "$bin/eval/litamin2-eval" --gt "report/${s}_gt_map_keyframes.txt" \
+    --est "report/${s}_slam_keyframes.txt" --plot "trajectory_$s.png" > /dev/null
+done
+echo "  map: $out/map.ply; trajectory plots: $out/trajectory_*.png; trajectories: $out/trajectories"
+echo "  logs and poses: $out (daemon.log, aggregator.log, probe.log, received_*, offline_*, report/)"
+[ "$probe_rc" -eq 0 ] && [ "$daemon_rc" -eq 0 ] && [ "$aggregator_rc" -eq 0 ] && [ "$stored" -ge "$expected" ] \
+  && [ "$report_rc" -eq 0 ] ||
+  { echo "demo FAILED (probe $probe_rc, daemon $daemon_rc, aggregator $aggregator_rc, stored $stored of $expected, report $report_rc)"; exit 1; }
 echo "demo OK"
