@@ -65,6 +65,15 @@ inline PointCloud synthetic_scene(unsigned seed, int points = 60000) {
   return cloud;
 }
 
+/// A pose on the ground plane: (x, y) in metres and a yaw in degrees.
+inline Eigen::Isometry3d planar_pose(double x, double y, double yaw_deg) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() =
+      Eigen::AngleAxisd(yaw_deg * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  pose.translation() = Eigen::Vector3d(x, y, 0.0);
+  return pose;
+}
+
 inline PointCloud transformed(const PointCloud& cloud, const Eigen::Isometry3d& pose) {
   PointCloud out = cloud;
   for (auto& p : out.points) p = (pose * p.cast<double>()).cast<float>();

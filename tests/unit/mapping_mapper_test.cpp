@@ -12,23 +12,16 @@
 
 using namespace litamin2;
 using namespace litamin2::mapping;
+using litamin2::testing::planar_pose;
 
 namespace {
-
-Eigen::Isometry3d planar(double x, double y, double yaw_deg) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() =
-      Eigen::AngleAxisd(yaw_deg * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  pose.translation() = Eigen::Vector3d(x, y, 0.0);
-  return pose;
-}
 
 /// A drive along the street's centre line, from x = -30 to 30 m and back, a keyframe every
 /// 3 m: the way back passes every place of the way out, facing the other way.
 std::vector<Eigen::Isometry3d> out_and_back() {
   std::vector<Eigen::Isometry3d> poses;
-  for (double x = -30.0; x <= 30.0; x += 3.0) poses.push_back(planar(x, 0.0, 0.0));
-  for (double x = 28.5; x >= -30.0; x -= 3.0) poses.push_back(planar(x, 1.0, 180.0));
+  for (double x = -30.0; x <= 30.0; x += 3.0) poses.push_back(planar_pose(x, 0.0, 0.0));
+  for (double x = 28.5; x >= -30.0; x -= 3.0) poses.push_back(planar_pose(x, 1.0, 180.0));
   return poses;
 }
 
@@ -41,7 +34,7 @@ std::vector<Keyframe> drive(const std::string& stream, const std::vector<Eigen::
   std::vector<Keyframe> out;
   Eigen::Isometry3d odom = Eigen::Isometry3d::Identity();
   for (std::size_t i = 0; i < truth.size(); ++i) {
-    if (i > 0) odom = odom * (truth[i - 1].inverse() * truth[i]) * planar(0, 0, drift_deg);
+    if (i > 0) odom = odom * (truth[i - 1].inverse() * truth[i]) * planar_pose(0, 0, drift_deg);
     Keyframe kf;
     kf.key = {stream, i};
     kf.stamp_ns = static_cast<std::int64_t>(i) * 100000000;

@@ -13,16 +13,9 @@
 
 using namespace litamin2;
 using namespace litamin2::mapping;
+using litamin2::testing::planar_pose;
 
 namespace {
-
-Eigen::Isometry3d planar(double x, double y, double yaw_deg) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() =
-      Eigen::AngleAxisd(yaw_deg * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  pose.translation() = Eigen::Vector3d(x, y, 0.0);
-  return pose;
-}
 
 /// Distributions of the scene seen from a sensor at `sensor` (scene frame).
 std::vector<Distribution> view(const PointCloud& scene, const Eigen::Isometry3d& sensor) {
@@ -50,9 +43,9 @@ PointCloud mirrored(const PointCloud& scene) {
 TEST(MappingPlaceDescriptor, FindsTheYawBetweenTwoViews) {
   const PointCloud scene = litamin2::testing::synthetic_scene(1);
   const PlaceRecognitionConfig config;
-  const auto a = make_place_descriptor(view(scene, planar(0, 0, 0)), config);
+  const auto a = make_place_descriptor(view(scene, planar_pose(0, 0, 0)), config);
   for (double yaw : {30.0, -90.0, 180.0}) {
-    const auto b = make_place_descriptor(view(scene, planar(0.5, 0.3, yaw)), config);
+    const auto b = make_place_descriptor(view(scene, planar_pose(0.5, 0.3, yaw)), config);
     const DescriptorMatch match = match_descriptors(b, a);
     // The query (b) sits at `yaw` in a's frame; one sector is 6 degrees.
     double error = match.yaw * 180.0 / M_PI - yaw;
@@ -60,8 +53,8 @@ TEST(MappingPlaceDescriptor, FindsTheYawBetweenTwoViews) {
     EXPECT_LE(std::abs(error), 6.0) << "yaw " << yaw << " found " << match.yaw * 180.0 / M_PI;
     EXPECT_LT(match.distance, 0.2) << "yaw " << yaw;
   }
-  const auto other = make_place_descriptor(view(mirrored(scene), planar(0, 0, 0)), config);
-  const auto same = make_place_descriptor(view(scene, planar(0.5, 0.3, 30)), config);
+  const auto other = make_place_descriptor(view(mirrored(scene), planar_pose(0, 0, 0)), config);
+  const auto same = make_place_descriptor(view(scene, planar_pose(0.5, 0.3, 30)), config);
   EXPECT_LT(match_descriptors(same, a).distance, match_descriptors(other, a).distance);
   EXPECT_LT(ring_key_distance(same, a), 0.05);
 }
@@ -69,12 +62,12 @@ TEST(MappingPlaceDescriptor, FindsTheYawBetweenTwoViews) {
 TEST(MappingLoopVerifier, RecoversTheRelativePoseOfTwoViews) {
   const PointCloud scene = litamin2::testing::synthetic_scene(1);
   const PointCloud scene2 = litamin2::testing::synthetic_scene(2);  // other noise, same geometry
-  const Eigen::Isometry3d candidate = planar(0, 0, 0);
-  const Eigen::Isometry3d query = planar(3.0, -1.0, 25.0);
+  const Eigen::Isometry3d candidate = planar_pose(0, 0, 0);
+  const Eigen::Isometry3d query = planar_pose(3.0, -1.0, 25.0);
   const VoxelMap submap = map_of(view(scene, candidate));
   // The descriptor's yaw is known to within a sector.
   const LoopVerification v =
-      verify_loop(view(scene2, query), submap, planar(0, 0, 22.0), LoopVerificationConfig{});
+      verify_loop(view(scene2, query), submap, planar_pose(0, 0, 22.0), LoopVerificationConfig{});
   ASSERT_TRUE(v.accepted) << v.reason << " at\n" << v.relative.matrix();
   const Eigen::Isometry3d truth = candidate.inverse() * query;
   EXPECT_LT((v.relative.translation() - truth.translation()).norm(), 0.1);
@@ -86,9 +79,9 @@ TEST(MappingLoopVerifier, RecoversTheRelativePoseOfTwoViews) {
 
 TEST(MappingLoopVerifier, RejectsAnotherPlace) {
   const PointCloud scene = litamin2::testing::synthetic_scene(1);
-  const VoxelMap submap = map_of(view(scene, planar(0, 0, 0)));
-  const LoopVerification v = verify_loop(view(mirrored(scene), planar(0, 0, 0)), submap,
-                                         planar(0, 0, 0), LoopVerificationConfig{});
+  const VoxelMap submap = map_of(view(scene, planar_pose(0, 0, 0)));
+  const LoopVerification v = verify_loop(view(mirrored(scene), planar_pose(0, 0, 0)), submap,
+                                         planar_pose(0, 0, 0), LoopVerificationConfig{});
   EXPECT_FALSE(v.accepted) << "fitness " << v.fitness << " rmse " << v.rmse;
   EXPECT_FALSE(v.reason.empty());
   EXPECT_LT(v.fitness, 0.5) << "a wrong place should be far below the 0.6 gate";
