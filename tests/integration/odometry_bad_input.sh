@@ -25,6 +25,12 @@ expect bad-config-value "registration.sigma_icp: -1" -- "$odo" -c "$work/bad.yam
 printf 'registration: {sigma_icpp: 1}\n' > "$work/typo.yaml"
 expect unknown-config-key "registration.sigma_icpp: unknown key" -- "$odo" -c "$work/typo.yaml" -o "$work/out" "$work/seq"
 expect missing-config "nope.yaml" -- "$odo" -c "$work/nope.yaml" -o "$work/out" "$work/seq"
+printf 'verification: {min_fitness: 2}\n' > "$work/mapper.yaml"
+expect bad-mapper-value "verification.min_fitness: 2 is out of range" -- \
+  "$odo" --loop-closure --mapper-config "$work/mapper.yaml" -o "$work/out" "$work/seq"
+expect missing-mapper-config "nope.yaml" -- \
+  "$odo" --loop-closure --mapper-config "$work/nope.yaml" -o "$work/out" "$work/seq"
 "$odo" --help | grep -q -- "--voxel-size" || { echo "FAIL help"; failures=$((failures + 1)); }
-echo "$((7 - failures)) passed, $failures failed"
+"$odo" --help | grep -q -- "--loop-closure" || { echo "FAIL help"; failures=$((failures + 1)); }
+echo "$((10 - failures)) passed, $failures failed"
 [ "$failures" -eq 0 ]

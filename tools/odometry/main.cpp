@@ -296,8 +296,7 @@ int main(int argc, char** argv) {
                "Offline SLAM: close loops with the aggregator's mapping back end; poses_kitti.txt "
                "is then corrected and poses_odometry_kitti.txt holds the odometry alone");
   app.add_option("--mapper-config", options.mapper_config_file,
-                 "Mapping back-end config YAML (see config/mapper.yaml); with --loop-closure")
-      ->check(CLI::ExistingFile);
+                 "Mapping back-end config YAML (see config/mapper.yaml); with --loop-closure");
   app.set_version_flag("--version", std::string(litamin2::version()));
   try {
     app.parse(argc, argv);
