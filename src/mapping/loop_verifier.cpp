@@ -115,6 +115,14 @@ LoopVerification verify_loop(const std::vector<Distribution>& query, const Voxel
     }
   }
 
+  // A wrong place rarely scores half the gate even with the coarse search's looser gate (half
+  // a step); stop before the registration, which costs as much again.
+  if (best_score < 0.5 * config.min_fitness) {
+    out.fitness = best_score;
+    out.reason = "coarse fitness " + std::to_string(best_score) + " below half the gate";
+    return out;
+  }
+
   // Fine: LiTAMIN2 ICP-term registration, first with a wide robust scale to pull in from the
   // coarse estimate, then with the odometry's scale for precision.
   RegistrationConfig wide;

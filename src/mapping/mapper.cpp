@@ -26,7 +26,6 @@ void validate(const MapperConfig& c) {
   require(c.verification.min_fitness >= 0.0 && c.verification.min_fitness <= 1.0,
           "verification.min_fitness must be in [0, 1]");
   require(c.map_voxel_size > 0.0, "map_voxel_size must be positive");
-  require(c.optimize_every_loops >= 1, "optimize_every_loops must be >= 1");
 }
 
 }  // namespace

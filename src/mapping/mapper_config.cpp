@@ -48,7 +48,6 @@ MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
   graph.reject_unknown();
 
   root.read_range("map_voxel_size", config.map_voxel_size, 0.05, 100.0);
-  root.read_range("optimize_every_loops", config.optimize_every_loops, 1, 100000);
   root.reject_unknown();
   return config;
 }
@@ -104,7 +103,6 @@ std::string mapper_config_to_yaml(const MapperConfig& c) {
   out << YAML::Key << "threads" << YAML::Value << c.graph.threads;
   out << YAML::EndMap;
   out << YAML::Key << "map_voxel_size" << YAML::Value << c.map_voxel_size;
-  out << YAML::Key << "optimize_every_loops" << YAML::Value << c.optimize_every_loops;
   out << YAML::EndMap;
   return out.c_str();
 }

@@ -245,11 +245,13 @@ int run(const Options& options) {
         stats.keyframes(), stats.failures());
     if (loop_closure) {
       const mapping::MapperStats ms = loop_closure->mapper().stats();
+      const mapping::MapperCpu cpu = loop_closure->mapper().cpu();
       std::printf(
           "loop closure: %zu keyframes, %zu candidates, %zu loops verified, %zu rejected, "
-          "%zu optimisations, %.1f s in mapping\n",
+          "%zu optimisations, %.1f s in mapping (CPU: verification %.1f s, optimisation %.1f "
+          "s)\n",
           ms.keyframes, ms.candidates, ms.verified, ms.rejected, ms.optimizations,
-          loop_closure->milliseconds() / 1000.0);
+          loop_closure->milliseconds() / 1000.0, cpu.verification_s, cpu.optimize_s);
       print_accuracy("odometry only:     ", odometry_acc);
       print_accuracy("with loop closure: ", acc);
     } else {

@@ -81,8 +81,6 @@ struct MapperConfig {
   PoseGraphConfig graph;
   /// Voxel edge of the global map, metres.
   double map_voxel_size = 3.0;
-  /// Optimise after every this many new loop edges (1 = after each).
-  int optimize_every_loops = 1;
 };
 
 /// Reads a mapper config from a YAML mapping; absent keys keep their defaults, unknown keys
