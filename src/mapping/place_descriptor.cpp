@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace litamin2::mapping {
 
@@ -30,6 +31,18 @@ PlaceDescriptor make_place_descriptor(const std::vector<Distribution>& distribut
     for (int s = 0; s < d.sectors; ++s) occupied += d.cells[r * d.sectors + s] > 0.0f;
     d.ring_key[r] = static_cast<float>(occupied) / d.sectors;
   }
+  d.sector_key.assign(static_cast<std::size_t>(d.sectors), 0.0f);
+  d.column_norms.assign(static_cast<std::size_t>(d.sectors), 0.0);
+  for (int s = 0; s < d.sectors; ++s) {
+    double sum = 0.0, sum_sq = 0.0;
+    for (int r = 0; r < d.rings; ++r) {
+      const double v = d.cells[r * d.sectors + s];
+      sum += v;
+      sum_sq += v * v;
+    }
+    d.sector_key[s] = static_cast<float>(sum / d.rings);
+    d.column_norms[s] = std::sqrt(sum_sq);
+  }
   return d;
 }
 
@@ -38,31 +51,34 @@ DescriptorMatch match_descriptors(const PlaceDescriptor& query, const PlaceDescr
   const int rings = query.rings;
   const int sectors = query.sectors;
   if (candidate.rings != rings || candidate.sectors != sectors) return best;
-  // Column norms once.
-  auto column_norms = [&](const PlaceDescriptor& d) {
-    std::vector<double> norms(sectors, 0.0);
-    for (int s = 0; s < sectors; ++s) {
-      double sum = 0.0;
-      for (int r = 0; r < rings; ++r)
-        sum += double(d.cells[r * sectors + s]) * d.cells[r * sectors + s];
-      norms[s] = std::sqrt(sum);
-    }
-    return norms;
-  };
-  const std::vector<double> qn = column_norms(query);
-  const std::vector<double> cn = column_norms(candidate);
   // A point at azimuth theta in the query frame is at theta + yaw in the candidate's frame,
   // so query column s is compared with candidate column s + shift.
+  int aligned = 0;
+  double aligned_error = std::numeric_limits<double>::infinity();
   for (int shift = 0; shift < sectors; ++shift) {
+    double error = 0.0;
+    for (int s = 0; s < sectors; ++s) {
+      const double d = double(query.sector_key[s]) - candidate.sector_key[(s + shift) % sectors];
+      error += d * d;
+    }
+    if (error < aligned_error) {
+      aligned_error = error;
+      aligned = shift;
+    }
+  }
+  const int search = std::min(kDescriptorShiftSearch, sectors / 2);
+  for (int offset = -search; offset <= search; ++offset) {
+    const int shift = ((aligned + offset) % sectors + sectors) % sectors;
     double sum = 0.0;
     int columns = 0;
     for (int s = 0; s < sectors; ++s) {
       const int c = (s + shift) % sectors;
-      if (qn[s] == 0.0 || cn[c] == 0.0) continue;
+      const double qn = query.column_norms[s], cn = candidate.column_norms[c];
+      if (qn == 0.0 || cn == 0.0) continue;
       double dot = 0.0;
       for (int r = 0; r < rings; ++r)
         dot += double(query.cells[r * sectors + s]) * candidate.cells[r * sectors + c];
-      sum += 1.0 - dot / (qn[s] * cn[c]);
+      sum += 1.0 - dot / (qn * cn);
       ++columns;
     }
     if (columns == 0) continue;

@@ -19,7 +19,16 @@ struct PlaceDescriptor {
   std::vector<float> cells;
   /// Per ring, the fraction of occupied sectors: invariant to yaw, used to shortlist.
   std::vector<float> ring_key;
+  /// Per sector, the mean of its cells: shifts with the yaw, used to align two descriptors
+  /// before the full comparison.
+  std::vector<float> sector_key;
+  /// Euclidean norm of each sector's column of cells.
+  std::vector<double> column_norms;
 };
+
+/// Column shifts on each side of the sector keys' best alignment that the full comparison
+/// tries.
+constexpr int kDescriptorShiftSearch = 3;
 
 /// Heights are measured from this far below the sensor, so that every occupied cell (ground
 /// included, about 1.7 m below a car's roof sensor) has a positive value.
@@ -36,7 +45,9 @@ struct DescriptorMatch {
   double yaw = 0.0;
 };
 
-/// Compares two descriptors of the same grid under every column shift.
+/// Compares two descriptors of the same grid: the column shift is found by aligning the sector
+/// keys, then the full comparison tries that shift and kDescriptorShiftSearch on each side
+/// (Scan Context's fast alignment).
 DescriptorMatch match_descriptors(const PlaceDescriptor& query, const PlaceDescriptor& candidate);
 
 /// Squared Euclidean distance of the ring keys.
