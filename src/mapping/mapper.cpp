@@ -57,7 +57,6 @@ struct Mapper::Impl {
   MapperStats stats;
   MapperCpu cpu;
   int loops_since_optimize = 0;
-  bool dirty = false;
 
   std::string anchor_of(const std::string& stream) const {
     std::string s = stream;
@@ -255,7 +254,6 @@ struct Mapper::Impl {
     loops.push_back(edge);
     loop_checked.push_back(false);
     ++loops_since_optimize;
-    dirty = true;
   }
 
   /// Poses before the last optimisation, to undo it.
@@ -380,7 +378,6 @@ AddStatus Mapper::add_keyframe(Keyframe keyframe, std::vector<LoopEdge>* new_loo
   stream_it->second.path_length.emplace(key.id, 0.0);
   m.update_path_lengths(stream_it->second, name);
   ++m.stats.keyframes;
-  m.dirty = true;
   m.cpu.chain_s += thread_cpu_seconds() - t1;
   m.detect_loops(stored, new_loops);
   return AddStatus::Added;
