@@ -17,29 +17,6 @@ void check_topic(const std::string& topic, const std::string& path) {
       throw ConfigError(path + ": '" + topic + "' is not a valid topic name");
 }
 
-void read_dds(YamlSection dds, daemon::DdsConfig& config) {
-  dds.read_range("domain", config.domain, 0, 232);
-  dds.read_enum<daemon::TransportProfile>("profile", config.profile,
-                                          {{"loopback", daemon::TransportProfile::loopback},
-                                           {"shm", daemon::TransportProfile::shm},
-                                           {"default", daemon::TransportProfile::default_profile},
-                                           {"xml", daemon::TransportProfile::xml}});
-  dds.read("xml_file", config.xml_file);
-  dds.read("xml_profile", config.xml_profile);
-  dds.reject_unknown();
-  if (config.profile == daemon::TransportProfile::xml) {
-    if (config.xml_file.empty())
-      throw ConfigError("dds.xml_file: required when dds.profile is xml");
-    if (config.xml_profile.empty())
-      throw ConfigError("dds.xml_profile: required when dds.profile is xml");
-    if (!std::ifstream(config.xml_file))
-      throw ConfigError("dds.xml_file: cannot open '" + config.xml_file + "'");
-  } else if (!config.xml_file.empty() || !config.xml_profile.empty()) {
-    throw ConfigError("dds.xml_file: only used with dds.profile: xml (profile is " +
-                      std::string(daemon::to_string(config.profile)) + ")");
-  }
-}
-
 mapping::MapperConfig read_mapper(const YAML::Node& node) {
   try {
     return mapping::mapper_config_from_yaml(node ? node : YAML::Node(YAML::NodeType::Map));
@@ -56,7 +33,7 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
   AggregatorConfig config;
   YamlSection root(node, "");
 
-  read_dds(YamlSection(root.child("dds"), "dds"), config.dds);
+  config.dds = daemon::dds_config_from_yaml(root.child("dds"));
 
   {
     YamlSection topics(root.child("topics"), "topics");

@@ -169,45 +169,38 @@ StreamConfig discovered_stream(const DaemonConfig& config, const std::string& id
   return stream;
 }
 
+DdsConfig dds_config_from_yaml(const YAML::Node& node) {
+  DdsConfig config;
+  YamlSection dds(node, "dds");
+  dds.read_range("domain", config.domain, 0, 232);
+  dds.read_enum<TransportProfile>("profile", config.profile,
+                                  {{"loopback", TransportProfile::loopback},
+                                   {"shm", TransportProfile::shm},
+                                   {"default", TransportProfile::default_profile},
+                                   {"xml", TransportProfile::xml}});
+  dds.read("xml_file", config.xml_file);
+  dds.read("xml_profile", config.xml_profile);
+  dds.reject_unknown();
+  if (config.profile == TransportProfile::xml) {
+    if (config.xml_file.empty())
+      throw ConfigError("dds.xml_file: required when dds.profile is xml");
+    if (config.xml_profile.empty())
+      throw ConfigError("dds.xml_profile: required when dds.profile is xml");
+    if (!std::ifstream(config.xml_file))
+      throw ConfigError("dds.xml_file: cannot open '" + config.xml_file + "'");
+  } else if (!config.xml_file.empty() || !config.xml_profile.empty()) {
+    throw ConfigError("dds.xml_file: only used with dds.profile: xml (profile is " +
+                      std::string(to_string(config.profile)) + ")");
+  }
+  return config;
+}
+
 DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
   DaemonConfig config;
   if (!node || node.IsNull()) throw ConfigError("config: empty; give streams or discovery");
   YamlSection root(node, "");
 
-  // dds
-  {
-    YamlSection dds(root.child("dds"), "dds");
-    dds.read_range("domain", config.dds.domain, 0, 232);
-    std::string profile;
-    if (dds.read("profile", profile)) {
-      if (profile == "loopback") {
-        config.dds.profile = TransportProfile::loopback;
-      } else if (profile == "shm") {
-        config.dds.profile = TransportProfile::shm;
-      } else if (profile == "default") {
-        config.dds.profile = TransportProfile::default_profile;
-      } else if (profile == "xml") {
-        config.dds.profile = TransportProfile::xml;
-      } else {
-        throw ConfigError("dds.profile: '" + profile +
-                          "' is not one of: loopback, shm, default, xml");
-      }
-    }
-    dds.read("xml_file", config.dds.xml_file);
-    dds.read("xml_profile", config.dds.xml_profile);
-    dds.reject_unknown();
-    if (config.dds.profile == TransportProfile::xml) {
-      if (config.dds.xml_file.empty())
-        throw ConfigError("dds.xml_file: required when dds.profile is xml");
-      if (config.dds.xml_profile.empty())
-        throw ConfigError("dds.xml_profile: required when dds.profile is xml");
-      if (!std::ifstream(config.dds.xml_file))
-        throw ConfigError("dds.xml_file: cannot open '" + config.dds.xml_file + "'");
-    } else if (!config.dds.xml_file.empty() || !config.dds.xml_profile.empty()) {
-      throw ConfigError("dds.xml_file: only used with dds.profile: xml (profile is " +
-                        std::string(to_string(config.dds.profile)) + ")");
-    }
-  }
+  config.dds = dds_config_from_yaml(root.child("dds"));
 
   // tracker (global); kept as YAML so streams can override single keys.
   const YAML::Node tracker_node = root.child("tracker");

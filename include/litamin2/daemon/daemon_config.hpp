@@ -40,6 +40,10 @@ struct DdsConfig {
   std::string xml_profile;
 };
 
+/// Reads a `dds:` section (a null node gives the defaults), shared by the daemon's and the
+/// aggregator's configs; errors name keys as dds.<key>.
+DdsConfig dds_config_from_yaml(const YAML::Node& node);
+
 /// One sensor stream: its input topic, the sensor's mounting and its tracker.
 struct StreamConfig {
   /// Unique id; output topics are named after it (rt/<id>/odom).
