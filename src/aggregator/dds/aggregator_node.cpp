@@ -2,6 +2,7 @@
 
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "litamin2/aggregator/dds/aggregator_messages.hpp"
+#include "litamin2/daemon/dds/participant_setup.hpp"
 #include "litamin2/dds/qos.hpp"
 #include "litamin2/msg/KeyframePosesPubSubTypes.h"
 #include "litamin2/msg/MapPatchPubSubTypes.h"
@@ -21,40 +22,6 @@ namespace litamin2::aggregator {
 namespace fdds = eprosima::fastdds::dds;
 
 namespace {
-
-dds::ParticipantConfig participant_config(const daemon::DdsConfig& config) {
-  dds::ParticipantConfig pc;
-  pc.domain_id = static_cast<std::uint32_t>(config.domain);
-  pc.name = "litamin2-aggregator";
-  switch (config.profile) {
-    case daemon::TransportProfile::loopback:
-      pc.transport = dds::TransportProfile::kLoopback;
-      break;
-    case daemon::TransportProfile::shm:
-      pc.transport = dds::TransportProfile::kShm;
-      break;
-    case daemon::TransportProfile::default_profile:
-      pc.transport = dds::TransportProfile::kDefault;
-      break;
-    case daemon::TransportProfile::xml:
-      pc.transport = dds::TransportProfile::kXml;
-      pc.xml_file = config.xml_file;
-      pc.xml_profile = config.xml_profile;
-      break;
-  }
-  return pc;
-}
-
-fdds::TypeSupport registered(fdds::DomainParticipant* participant, fdds::TopicDataType* type) {
-  fdds::TypeSupport support(type);
-  if (support.register_type(participant) != ReturnCode_t::RETCODE_OK)
-    throw std::runtime_error("cannot register DDS type " + support.get_type_name());
-  return support;
-}
-
-double wall_seconds() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-}
 
 /// Corrected poses: the latest per stream instance, kept for late readers.
 fdds::DataWriterQos latest_per_instance_qos() {
@@ -83,7 +50,7 @@ class AggregatorNode::Sink : public AggregatorSink {
     if (!poses_->write(&msg)) spdlog::warn("cannot publish the poses of stream {}", poses.stream);
   }
   void publish_summary(const MapSummary& summary) override {
-    litamin2::msg::MapSummary msg = to_map_summary_msg(summary, wall_seconds());
+    litamin2::msg::MapSummary msg = to_map_summary_msg(summary, daemon::wall_seconds());
     if (!summary_->write(&msg)) spdlog::warn("cannot publish the map summary");
   }
 
@@ -105,13 +72,16 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
                core_->mapper().loops().size());
 
   std::string error;
-  participant_ = dds::create_participant(participant_config(config_.dds), &error);
+  participant_ = dds::create_participant(
+      daemon::participant_config(config_.dds, "litamin2-aggregator"), &error);
   if (!participant_) throw std::runtime_error("cannot create the DDS participant: " + error);
-  patch_type_ = registered(participant_.get(), new litamin2::msg::MapPatchPubSubType());
-  poses_type_ = registered(participant_.get(), new litamin2::msg::KeyframePosesPubSubType());
-  summary_type_ = registered(participant_.get(), new litamin2::msg::MapSummaryPubSubType());
-  status_type_ =
-      registered(participant_.get(), new diagnostic_msgs::msg::DiagnosticArrayPubSubType());
+  patch_type_ = daemon::register_type(participant_.get(), new litamin2::msg::MapPatchPubSubType());
+  poses_type_ =
+      daemon::register_type(participant_.get(), new litamin2::msg::KeyframePosesPubSubType());
+  summary_type_ =
+      daemon::register_type(participant_.get(), new litamin2::msg::MapSummaryPubSubType());
+  status_type_ = daemon::register_type(participant_.get(),
+                                       new diagnostic_msgs::msg::DiagnosticArrayPubSubType());
 
   subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
   publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
@@ -208,7 +178,7 @@ void AggregatorNode::publish_status(Clock::time_point now) {
   }
   reported_rejected_ = in.rejected;
   reported_lost_ = in.samples_lost;
-  auto msg = make_aggregator_status(w, in, level, message, wall_seconds());
+  auto msg = make_aggregator_status(w, in, level, message, daemon::wall_seconds());
   status_writer_->write(&msg);
 }
 

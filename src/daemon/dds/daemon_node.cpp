@@ -2,6 +2,7 @@
 
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "litamin2/daemon/dds/dds_stream_sink.hpp"
+#include "litamin2/daemon/dds/participant_setup.hpp"
 #include "litamin2/daemon/dds/points_listener.hpp"
 #include "litamin2/daemon/dds/status_message.hpp"
 #include "litamin2/daemon/stream_processor.hpp"
@@ -39,44 +40,6 @@ struct DaemonNode::Stream {
   std::uint64_t reported_out_of_order = 0;
 };
 
-namespace {
-
-dds::ParticipantConfig participant_config(const DaemonConfig& config) {
-  dds::ParticipantConfig pc;
-  pc.domain_id = static_cast<std::uint32_t>(config.dds.domain);
-  pc.name = "litamin2d";
-  switch (config.dds.profile) {
-    case TransportProfile::loopback:
-      pc.transport = dds::TransportProfile::kLoopback;
-      break;
-    case TransportProfile::shm:
-      pc.transport = dds::TransportProfile::kShm;
-      break;
-    case TransportProfile::default_profile:
-      pc.transport = dds::TransportProfile::kDefault;
-      break;
-    case TransportProfile::xml:
-      pc.transport = dds::TransportProfile::kXml;
-      pc.xml_file = config.dds.xml_file;
-      pc.xml_profile = config.dds.xml_profile;
-      break;
-  }
-  return pc;
-}
-
-fdds::TypeSupport registered(fdds::DomainParticipant* participant, fdds::TopicDataType* type) {
-  fdds::TypeSupport support(type);
-  if (support.register_type(participant) != ReturnCode_t::RETCODE_OK)
-    throw std::runtime_error("cannot register DDS type " + support.get_type_name());
-  return support;
-}
-
-double wall_seconds() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-}
-
-}  // namespace
-
 DaemonNode::DaemonNode(DaemonConfig config) : config_(std::move(config)) {
   if (config_.discovery.enabled) {
     std::string error;
@@ -93,15 +56,15 @@ DaemonNode::DaemonNode(DaemonConfig config) : config_(std::move(config)) {
   sensor_msgs::msg::PointCloud2PubSubType points_type_probe;
   discovery_ = std::make_unique<PublisherDiscovery>(points_type_probe.getName());
   std::string error;
-  participant_ = dds::create_participant(participant_config(config_), &error, discovery_.get(),
-                                         fdds::StatusMask::none());
+  participant_ = dds::create_participant(participant_config(config_.dds, "litamin2d"), &error,
+                                         discovery_.get(), fdds::StatusMask::none());
   if (!participant_) throw std::runtime_error("cannot create the DDS participant: " + error);
 
-  points_type_ = registered(participant_.get(), new sensor_msgs::msg::PointCloud2PubSubType());
-  odom_type_ = registered(participant_.get(), new nav_msgs::msg::OdometryPubSubType());
-  map_patch_type_ = registered(participant_.get(), new litamin2::msg::MapPatchPubSubType());
+  points_type_ = register_type(participant_.get(), new sensor_msgs::msg::PointCloud2PubSubType());
+  odom_type_ = register_type(participant_.get(), new nav_msgs::msg::OdometryPubSubType());
+  map_patch_type_ = register_type(participant_.get(), new litamin2::msg::MapPatchPubSubType());
   status_type_ =
-      registered(participant_.get(), new diagnostic_msgs::msg::DiagnosticArrayPubSubType());
+      register_type(participant_.get(), new diagnostic_msgs::msg::DiagnosticArrayPubSubType());
 
   subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
   publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
