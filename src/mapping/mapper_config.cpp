@@ -43,6 +43,7 @@ MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
                    180.0);
   graph.read_range("loop_loss_scale", g.loop_loss_scale, 1e-3, 1e3);
   graph.read_range("loop_consistency_sigmas", g.loop_consistency_sigmas, 0.1, 1e6);
+  graph.read_range("level_prior_sigma_deg", g.level_prior_sigma_deg, 0.0, 90.0);
   graph.read_range("max_iterations", g.max_iterations, 1, 10000);
   graph.read_range("threads", g.threads, 1, 256);
   graph.reject_unknown();
@@ -99,6 +100,7 @@ std::string mapper_config_to_yaml(const MapperConfig& c) {
       << c.graph.odometry_rotation_sigma_min_deg;
   out << YAML::Key << "loop_loss_scale" << YAML::Value << c.graph.loop_loss_scale;
   out << YAML::Key << "loop_consistency_sigmas" << YAML::Value << c.graph.loop_consistency_sigmas;
+  out << YAML::Key << "level_prior_sigma_deg" << YAML::Value << c.graph.level_prior_sigma_deg;
   out << YAML::Key << "max_iterations" << YAML::Value << c.graph.max_iterations;
   out << YAML::Key << "threads" << YAML::Value << c.graph.threads;
   out << YAML::EndMap;

@@ -35,6 +35,24 @@ struct RelativePoseError {
   Vector6d inv_sigma;
 };
 
+/// A ground vehicle's sensor stays roughly level: the up axis of the frame the poses are in,
+/// seen from the node, is near the node's own up axis. Residual: the horizontal components of
+/// R^T e_z, divided by the prior's standard deviation (radians, small-angle).
+struct LevelPrior {
+  explicit LevelPrior(double sigma) : inv_sigma(1.0 / sigma) {}
+
+  template <class T>
+  bool operator()(const T* q_ptr, T* residual) const {
+    Eigen::Map<const Eigen::Quaternion<T>> q(q_ptr);
+    const Eigen::Matrix<T, 3, 1> up = q.conjugate() * Eigen::Matrix<T, 3, 1>(T(0), T(0), T(1));
+    residual[0] = up.x() * T(inv_sigma);
+    residual[1] = up.y() * T(inv_sigma);
+    return true;
+  }
+
+  double inv_sigma;
+};
+
 }  // namespace
 
 PoseGraphResult optimize_pose_graph(std::vector<Eigen::Isometry3d>& poses,
@@ -59,6 +77,13 @@ PoseGraphResult optimize_pose_graph(std::vector<Eigen::Isometry3d>& poses,
     ceres::LossFunction* loss = e.robust ? new ceres::CauchyLoss(config.loop_loss_scale) : nullptr;
     problem.AddResidualBlock(cost, loss, q[e.from].coeffs().data(), t[e.from].data(),
                              q[e.to].coeffs().data(), t[e.to].data());
+  }
+  const double level_sigma = config.level_prior_sigma_deg * M_PI / 180.0;
+  for (std::size_t i = 0; level_sigma > 0.0 && i < n; ++i) {
+    if (fixed[i] || !problem.HasParameterBlock(q[i].coeffs().data())) continue;
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<LevelPrior, 2, 4>(new LevelPrior(level_sigma)), nullptr,
+        q[i].coeffs().data());
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (!problem.HasParameterBlock(q[i].coeffs().data())) continue;

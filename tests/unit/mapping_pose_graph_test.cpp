@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace litamin2::mapping;
@@ -112,4 +113,38 @@ TEST(MappingPoseGraph, RobustLossLimitsAWrongLoop) {
   ASSERT_TRUE(optimize_pose_graph(poses, fixed, edges, {}).usable);
   // Without the robust loss the end would move by about 5 m * 0.1^-2 / (0.1^-2 + ...) ~ 1 m.
   EXPECT_LT(std::abs(poses[n - 1].translation().x() - (n - 1)), 0.2);
+}
+
+TEST(MappingPoseGraph, LevelPriorPullsTiltTowardsTheFirstNode) {
+  // A chain whose odometry pitches up 0.5 degrees per step: without the prior the last node is
+  // tilted by 9.5 degrees; a 1 degree level prior against 0.5 degree odometry sigmas keeps it
+  // near level. Without any prior the residuals are zero and nothing moves.
+  const int n = 20;
+  std::vector<Eigen::Isometry3d> poses = {Eigen::Isometry3d::Identity()};
+  std::vector<PoseGraphEdge> edges;
+  for (int i = 1; i < n; ++i) {
+    PoseGraphEdge e;
+    e.from = i - 1;
+    e.to = i;
+    e.relative = pose_of(1.0, 0, 0, 0, 0.5 * M_PI / 180.0, 0);
+    e.sigma << 0.01, 0.01, 0.01, 0.5 * M_PI / 180.0, 0.5 * M_PI / 180.0, 0.5 * M_PI / 180.0;
+    edges.push_back(e);
+    poses.push_back(poses.back() * e.relative);
+  }
+  std::vector<bool> fixed(n, false);
+  fixed[0] = true;
+  auto tilt_deg = [](const Eigen::Isometry3d& p) {
+    return std::acos(
+               std::clamp((p.rotation().transpose() * Eigen::Vector3d::UnitZ()).z(), -1.0, 1.0)) *
+           180.0 / M_PI;
+  };
+  PoseGraphConfig config;
+  std::vector<Eigen::Isometry3d> without = poses;
+  ASSERT_TRUE(optimize_pose_graph(without, fixed, edges, config).usable);
+  EXPECT_NEAR(tilt_deg(without[n - 1]), 9.5, 0.01);
+  config.level_prior_sigma_deg = 1.0;
+  std::vector<Eigen::Isometry3d> with = poses;
+  ASSERT_TRUE(optimize_pose_graph(with, fixed, edges, config).usable);
+  EXPECT_LT(tilt_deg(with[n - 1]), 3.0);
+  EXPECT_LT(tilt_deg(with[n - 1]), tilt_deg(without[n - 1]) / 3.0);
 }

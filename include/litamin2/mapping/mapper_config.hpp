@@ -69,6 +69,11 @@ struct PoseGraphConfig {
   /// loop_consistency_sigmas, it is dropped; else it keeps the robust loss from then on.
   double loop_loss_scale = 1.0;
   double loop_consistency_sigmas = 3.0;
+  /// Standard deviation of a prior that keeps every keyframe level with the frame of its
+  /// group's first keyframe (roll and pitch), degrees; 0 = off. For ground vehicles whose
+  /// roads tilt less than this from where they started: it bounds the tilt drift that loops
+  /// cannot correct on stretches never revisited.
+  double level_prior_sigma_deg = 0.0;
   /// Solver iteration limit.
   int max_iterations = 50;
   /// Solver threads.
