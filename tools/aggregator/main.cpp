@@ -8,8 +8,7 @@
 #include "litamin2/aggregator/dds/aggregator_node.hpp"
 #include "litamin2/aggregator/map_export.hpp"
 #include "litamin2/daemon/logging.hpp"
-#include "litamin2/daemon/sd_notify.hpp"
-#include "litamin2/daemon/shutdown_signals.hpp"
+#include "litamin2/daemon/service_loop.hpp"
 #include "litamin2/io/io_error.hpp"
 #include "litamin2/mapping/mapper_config.hpp"
 #include "litamin2/store/store_error.hpp"
@@ -124,39 +123,28 @@ int main(int argc, char** argv) {
   }
   spdlog::info("litamin2-aggregator {} starting: {}", litamin2::version(), describe(config));
 
-  const daemon::SdNotifier notifier = daemon::SdNotifier::from_environment();
-  const auto watchdog_interval = daemon::watchdog_interval_from_environment();
-  daemon::WatchdogPinger watchdog(notifier, config.watchdog.enabled && watchdog_interval
-                                                ? *watchdog_interval
-                                                : std::chrono::microseconds(0));
+  daemon::ServiceLoop service(config.watchdog.enabled);
   int exit_code = 0;
   try {
-    notifier.status("recovering the store");
+    service.notifier().status("recovering the store");
     AggregatorNode node(config, progress_printer("recovering"));
-    notifier.ready();
-    notifier.status(node.summary());
-    auto next_summary = std::chrono::steady_clock::now();
-    int signal = 0;
-    while ((signal = signals.wait_for(kLoopPeriod)) == 0) {
-      const auto now = std::chrono::steady_clock::now();
+    service.notifier().ready();
+    service.notifier().status(node.summary());
+    daemon::ServiceLoop::Hooks hooks;
+    hooks.poll = [&](daemon::ServiceLoop::Clock::time_point now) {
       node.poll(now);
-      if (node.failed()) {
-        spdlog::error("the store failed: exiting so that the service restarts");
-        exit_code = 1;
-        break;
-      }
-      const bool healthy = node.healthy(now);
-      if (!watchdog.tick(healthy, now) && !healthy && watchdog.enabled())
-        spdlog::error("a batch has been in processing for over {} s: withholding the watchdog",
-                      config.watchdog.stall_timeout_s);
-      if (now >= next_summary) {
-        notifier.status(node.summary());
-        next_summary = now + std::chrono::seconds(5);
-      }
-    }
-    if (signal != 0)
-      spdlog::info("{} received: shutting down", signal == SIGTERM ? "SIGTERM" : "SIGINT");
-    notifier.stopping();
+      if (!node.failed()) return true;
+      spdlog::error("the store failed: exiting so that the service restarts");
+      exit_code = 1;
+      return false;
+    };
+    hooks.healthy = [&](daemon::ServiceLoop::Clock::time_point now) { return node.healthy(now); };
+    hooks.summary = [&](daemon::ServiceLoop::Clock::time_point) { return node.summary(); };
+    hooks.stall_message =
+        fmt::format("a batch has been in processing for over {} s: withholding the watchdog",
+                    config.watchdog.stall_timeout_s);
+    service.run(signals, hooks, kLoopPeriod);
+    service.notifier().stopping();
     node.shutdown();
   } catch (const store::StoreError& e) {
     spdlog::error("cannot use the store: {}", e.what());

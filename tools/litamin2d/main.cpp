@@ -6,8 +6,7 @@
 #include "litamin2/daemon/daemon_config.hpp"
 #include "litamin2/daemon/dds/daemon_node.hpp"
 #include "litamin2/daemon/logging.hpp"
-#include "litamin2/daemon/sd_notify.hpp"
-#include "litamin2/daemon/shutdown_signals.hpp"
+#include "litamin2/daemon/service_loop.hpp"
 #include "litamin2/version.hpp"
 
 #include <spdlog/spdlog.h>
@@ -71,36 +70,29 @@ int main(int argc, char** argv) {
   }
   spdlog::info("litamin2d {} starting: {}", litamin2::version(), describe(config));
 
-  const SdNotifier notifier = SdNotifier::from_environment();
-  const auto watchdog_interval = watchdog_interval_from_environment();
-  WatchdogPinger watchdog(notifier, config.watchdog.enabled && watchdog_interval
-                                        ? *watchdog_interval
-                                        : std::chrono::microseconds(0));
+  ServiceLoop service(config.watchdog.enabled);
   int exit_code = 0;
   try {
     DaemonNode node(config);
-    notifier.ready();
-    notifier.status(node.summary());
-    if (watchdog.enabled())
+    service.notifier().ready();
+    service.notifier().status(node.summary());
+    if (service.watchdog().enabled())
       spdlog::info(
           "systemd watchdog: pinging every {} ms while healthy",
-          std::chrono::duration_cast<std::chrono::milliseconds>(watchdog.period()).count());
-    auto next_summary = std::chrono::steady_clock::now();
-    int signal = 0;
-    while ((signal = signals.wait_for(kLoopPeriod)) == 0) {
-      const auto now = std::chrono::steady_clock::now();
+          std::chrono::duration_cast<std::chrono::milliseconds>(service.watchdog().period())
+              .count());
+    ServiceLoop::Hooks hooks;
+    hooks.poll = [&](ServiceLoop::Clock::time_point now) {
       node.poll(now);
-      const bool healthy = node.healthy(now);
-      if (!watchdog.tick(healthy, now) && !healthy && watchdog.enabled())
-        spdlog::error("a frame has been in processing for over {} s: withholding the watchdog",
-                      config.watchdog.stall_timeout_s);
-      if (now >= next_summary) {
-        notifier.status(node.summary(now));
-        next_summary = now + std::chrono::seconds(5);
-      }
-    }
-    spdlog::info("{} received: shutting down", signal == SIGTERM ? "SIGTERM" : "SIGINT");
-    notifier.stopping();
+      return true;
+    };
+    hooks.healthy = [&](ServiceLoop::Clock::time_point now) { return node.healthy(now); };
+    hooks.summary = [&](ServiceLoop::Clock::time_point now) { return node.summary(now); };
+    hooks.stall_message =
+        fmt::format("a frame has been in processing for over {} s: withholding the watchdog",
+                    config.watchdog.stall_timeout_s);
+    service.run(signals, hooks, kLoopPeriod);
+    service.notifier().stopping();
     const DrainResult drained = node.shutdown();
     if (!drained.complete) {
       // A frame is wedged: do not hang on it, systemd would have to kill us.
