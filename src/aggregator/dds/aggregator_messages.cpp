@@ -1,28 +1,14 @@
 #include "litamin2/aggregator/dds/aggregator_messages.hpp"
 
+#include "litamin2/daemon/dds/status_message.hpp"
 #include "litamin2/dds/map_patch_conversion.hpp"
 #include "litamin2/dds/pose_conversion.hpp"
 #include "litamin2/dds/time_conversion.hpp"
 
-#include <cstdio>
-
 namespace litamin2::aggregator {
-namespace {
 
-diagnostic_msgs::msg::KeyValue key_value(const char* key, const std::string& value) {
-  diagnostic_msgs::msg::KeyValue kv;
-  kv.key(key);
-  kv.value(value);
-  return kv;
-}
-
-std::string number(double value, int decimals) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
-  return buffer;
-}
-
-}  // namespace
+using daemon::fixed_number;
+using daemon::key_value;
 
 litamin2::msg::KeyframePoses to_keyframe_poses_msg(const StreamPoses& poses) {
   litamin2::msg::KeyframePoses msg;
@@ -97,9 +83,9 @@ diagnostic_msgs::msg::DiagnosticArray make_aggregator_status(const WorkerStatus&
   v.push_back(key_value("loops", std::to_string(w.loops)));
   v.push_back(key_value("optimizations", std::to_string(w.optimizations)));
   v.push_back(key_value("batches", std::to_string(w.batches)));
-  v.push_back(key_value("last_store_ms", number(w.last_store_ms, 3)));
-  v.push_back(key_value("last_mapper_ms", number(w.last_mapper_ms, 3)));
-  v.push_back(key_value("last_optimize_ms", number(w.last_optimize_ms, 3)));
+  v.push_back(key_value("last_store_ms", fixed_number(w.last_store_ms, 3)));
+  v.push_back(key_value("last_mapper_ms", fixed_number(w.last_mapper_ms, 3)));
+  v.push_back(key_value("last_optimize_ms", fixed_number(w.last_optimize_ms, 3)));
   if (!w.error.empty()) v.push_back(key_value("error", w.error));
   array.status().push_back(std::move(status));
   for (const auto& [stream, counts] : w.streams) {

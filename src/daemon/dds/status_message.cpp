@@ -5,7 +5,6 @@
 #include <cstdio>
 
 namespace litamin2::daemon {
-namespace {
 
 diagnostic_msgs::msg::KeyValue key_value(const char* key, const std::string& value) {
   diagnostic_msgs::msg::KeyValue kv;
@@ -14,13 +13,11 @@ diagnostic_msgs::msg::KeyValue key_value(const char* key, const std::string& val
   return kv;
 }
 
-std::string number(double value, int decimals) {
+std::string fixed_number(double value, int decimals) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
   return buffer;
 }
-
-}  // namespace
 
 diagnostic_msgs::msg::DiagnosticArray make_status_message(const std::vector<StreamStatus>& streams,
                                                           double stamp_seconds) {
@@ -38,10 +35,10 @@ diagnostic_msgs::msg::DiagnosticArray make_status_message(const std::vector<Stre
     v.push_back(key_value("reader", !s.reading   ? "waiting for a publisher"
                                     : s.reliable ? "reliable"
                                                  : "best_effort"));
-    v.push_back(key_value("frames_per_second", number(s.stats.frames_per_second, 2)));
-    v.push_back(key_value("latency_p50_ms", number(s.stats.latency_p50_ms, 3)));
-    v.push_back(key_value("latency_p99_ms", number(s.stats.latency_p99_ms, 3)));
-    v.push_back(key_value("latency_max_ms", number(s.stats.latency_max_ms, 3)));
+    v.push_back(key_value("frames_per_second", fixed_number(s.stats.frames_per_second, 2)));
+    v.push_back(key_value("latency_p50_ms", fixed_number(s.stats.latency_p50_ms, 3)));
+    v.push_back(key_value("latency_p99_ms", fixed_number(s.stats.latency_p99_ms, 3)));
+    v.push_back(key_value("latency_max_ms", fixed_number(s.stats.latency_max_ms, 3)));
     v.push_back(key_value("frames_received", std::to_string(s.stats.frames_received)));
     v.push_back(key_value("frames_processed", std::to_string(s.stats.frames_processed)));
     v.push_back(key_value("frames_dropped", std::to_string(s.counters.dropped)));
