@@ -9,6 +9,7 @@
 #    the file, bytes unchanged), bad configurations, --help/--version/--check-config.
 if(TARGET litamin2-aggregator)
   add_executable(aggregator_probe ${CMAKE_CURRENT_LIST_DIR}/aggregator_probe/main.cpp)
+  target_include_directories(aggregator_probe PRIVATE ${CMAKE_SOURCE_DIR}/tests)
   target_link_libraries(aggregator_probe PRIVATE litamin2_dds litamin2_core litamin2_io
     litamin2_mapping CLI11::CLI11)
 

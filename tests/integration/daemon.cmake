@@ -8,6 +8,7 @@
 #    READY/WATCHDOG/STOPPING on a fake NOTIFY_SOCKET, SIGTERM/SIGINT exit 0 within 2 s.
 if(TARGET litamin2d)
   add_executable(daemon_probe ${CMAKE_CURRENT_LIST_DIR}/daemon_probe/main.cpp)
+  target_include_directories(daemon_probe PRIVATE ${CMAKE_SOURCE_DIR}/tests)
   target_link_libraries(daemon_probe PRIVATE litamin2_dds litamin2_io CLI11::CLI11)
 
   add_test(NAME integration_daemon_lifecycle

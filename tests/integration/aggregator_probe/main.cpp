@@ -19,6 +19,7 @@
 #include "litamin2/io/kitti_sequence.hpp"
 #include "litamin2/msg/KeyframePosesPubSubTypes.h"
 #include "litamin2/msg/MapPatchPubSubTypes.h"
+#include "support/probe_participant.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
@@ -184,19 +185,9 @@ int main(int argc, char** argv) {
   poses->add_option("--timeout", timeout_s);
   CLI11_PARSE(app, argc, argv);
 
-  std::string error;
-  auto pc = litamin2::dds::parse_participant_profile(profile, &error);
-  if (!pc) {
-    std::fprintf(stderr, "probe: %s\n", error.c_str());
-    return 1;
-  }
-  pc->domain_id = static_cast<std::uint32_t>(domain);
-  pc->name = "aggregator_probe";
-  litamin2::dds::ParticipantPtr participant = litamin2::dds::create_participant(*pc, &error);
-  if (!participant) {
-    std::fprintf(stderr, "probe: %s\n", error.c_str());
-    return 1;
-  }
+  litamin2::dds::ParticipantPtr participant =
+      litamin2::testing::probe_participant(profile, domain, "aggregator_probe");
+  if (!participant) return 1;
 
   if (poses->parsed()) {
     fdds::TypeSupport type(new litamin2::msg::KeyframePosesPubSubType());

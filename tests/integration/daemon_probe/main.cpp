@@ -12,6 +12,7 @@
 #include "litamin2/dds/qos.hpp"
 #include "litamin2/io/trajectory.hpp"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
+#include "support/probe_participant.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
@@ -102,19 +103,9 @@ int main(int argc, char** argv) {
   app.add_option("--poses-out", poses_out, "prefix of files with the received poses (KITTI)");
   CLI11_PARSE(app, argc, argv);
 
-  std::string error;
-  auto pc = litamin2::dds::parse_participant_profile(profile, &error);
-  if (!pc) {
-    std::fprintf(stderr, "probe: %s\n", error.c_str());
-    return 1;
-  }
-  pc->domain_id = static_cast<std::uint32_t>(domain);
-  pc->name = "daemon_probe";
-  litamin2::dds::ParticipantPtr participant = litamin2::dds::create_participant(*pc, &error);
-  if (!participant) {
-    std::fprintf(stderr, "probe: %s\n", error.c_str());
-    return 1;
-  }
+  litamin2::dds::ParticipantPtr participant =
+      litamin2::testing::probe_participant(profile, domain, "daemon_probe");
+  if (!participant) return 1;
   fdds::TypeSupport odom_type(new nav_msgs::msg::OdometryPubSubType());
   fdds::TypeSupport status_type(new diagnostic_msgs::msg::DiagnosticArrayPubSubType());
   odom_type.register_type(participant.get());
