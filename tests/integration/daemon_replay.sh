@@ -83,8 +83,10 @@ rm -f probe.ready
 "$build/tests/integration/daemon_probe" --domain 18 --expect $frames --timeout 300 \
   --stream car_c=offline/poses_kitti.txt --ready-file probe.ready > probe_discovery.log 2>&1 &
 probe_pid=$!
+# The daemon creates car_c's odometry writer when it discovers the replay's writer; the probe
+# needs a moment to match it before the first scan's odometry is published.
 timeout 300 "$tools/replay/litamin2-replay" --domain 18 --profile loopback --rate 10 \
-  seq --stream car_c > replay_discovery.log 2>&1 || { cat replay_discovery.log daemon_discovery.log; exit 1; }
+  --start-delay 2 seq --stream car_c > replay_discovery.log 2>&1 || { cat replay_discovery.log daemon_discovery.log; exit 1; }
 probe_status=0
 wait $probe_pid || probe_status=$?
 cat probe_discovery.log

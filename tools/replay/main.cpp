@@ -144,6 +144,9 @@ int main(int argc, char** argv) {
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
   }
+  if (options.start_delay_s > 0.0) {
+    std::this_thread::sleep_for(std::chrono::duration<double>(options.start_delay_s));
+  }
 
   // Publish: one thread per stream, one shared schedule.
   const std::chrono::nanoseconds period =

@@ -79,6 +79,10 @@ int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& sh
   app.add_option("--wait-subscribers", options.wait_subscribers,
                  "Matched readers each stream waits for before publishing (default 1, 0 = none)")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--start-delay", options.start_delay_s,
+                 "Seconds to wait after the readers matched before the first scan, e.g. for "
+                 "subscribers of a discovering daemon's odometry to match it (default 0)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--timeout", options.timeout_s,
                  "Bound of each wait: readers, acknowledgments, a blocked write (s, default 30)")
       ->check(CLI::PositiveNumber);

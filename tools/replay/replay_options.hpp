@@ -29,6 +29,10 @@ struct ReplayOptions {
   int wait_subscribers = 1;
   /// Bound of every wait (readers, acknowledgments, a blocked write), seconds.
   double timeout_s = 30.0;
+  /// Pause after the readers matched and before the first scan, seconds: a daemon that starts
+  /// a stream on discovery creates its odometry writer at the same moment as its reader, and
+  /// its own subscribers need a moment to match that writer.
+  double start_delay_s = 0.0;
   /// Best-effort keep-last writers instead of reliable keep-all ones.
   bool best_effort = false;
   /// Writer history depth (keep-all: samples held until acknowledged).
