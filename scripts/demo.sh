@@ -82,6 +82,7 @@ replay_args=()
 for s in "${streams[@]}"; do replay_args+=(--stream "$s"); done
 start=$(date +%s.%N)
 "$bin/replay/litamin2-replay" --domain "$domain" --profile loopback --rate "$rate" --timeout 60 \
+  --start-delay 2 \
   "${replay_args[@]}" $(for s in "${streams[@]}"; do echo "fleet/$s"; done) > replay.log 2>&1 \
   || { cat replay.log daemon.log; exit 1; }
 probe_rc=0
