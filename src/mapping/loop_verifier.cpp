@@ -78,8 +78,8 @@ Eigen::Isometry3d yaw_pose(double yaw) {
 }
 
 LoopVerification verify_loop(const std::vector<Distribution>& query, const VoxelMap& submap,
-                             const Eigen::Isometry3d& initial,
-                             const LoopVerificationConfig& config) {
+                             const Eigen::Isometry3d& initial, const LoopVerificationConfig& config,
+                             double yaw_step) {
   LoopVerification out;
   if (query.size() < 20 || submap.distributions().size() < 20) {
     out.reason = "too few distributions";
@@ -97,10 +97,9 @@ LoopVerification verify_loop(const std::vector<Distribution>& query, const Voxel
   // planar offsets around the initial pose on a subsample of the query.
   const std::size_t stride = std::max<std::size_t>(1, scorer.structure.size() / 300);
   const double step = submap.voxel_size() / 2.0;
-  const double sector = 2.0 * M_PI / 60.0;
   Eigen::Isometry3d best = initial;
   double best_score = -1.0;
-  for (double dyaw : {-sector / 2.0, 0.0, sector / 2.0}) {
+  for (double dyaw : {-yaw_step, 0.0, yaw_step}) {
     for (int ix = -4; ix <= 4; ++ix) {
       for (int iy = -4; iy <= 4; ++iy) {
         Eigen::Isometry3d pose = yaw_pose(dyaw) * initial;

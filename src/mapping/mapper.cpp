@@ -202,8 +202,8 @@ struct Mapper::Impl {
     for (const auto& [candidate, initial] : candidates) {
       ++stats.candidates;
       const VoxelMap submap = submap_of(*candidate);
-      const LoopVerification v =
-          verify_loop(query.keyframe.distributions, submap, initial, config.verification);
+      const LoopVerification v = verify_loop(query.keyframe.distributions, submap, initial,
+                                             config.verification, M_PI / config.place.sectors);
       now = thread_cpu_seconds();
       cpu.verification_s += now - t;
       t = now;

@@ -1,6 +1,7 @@
 // litamin2-odometry: LiTAMIN2 odometry over a recorded sequence of scans.
 
 #include "common/progress.hpp"
+#include "litamin2/core/stopwatch.hpp"
 #include "litamin2/core/tracker.hpp"
 #include "litamin2/eval/ate.hpp"
 #include "litamin2/eval/kitti_metrics.hpp"
@@ -63,8 +64,7 @@ class LoopClosure {
       mapper_.add_keyframe(std::move(kf), &loops);
       if (!loops.empty()) mapper_.optimize();
       ++next_id_;
-      ms_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                 .count();
+      ms_ += elapsed_ms(start);
     }
     keyframe_of_frame_.push_back(next_id_ == 0 ? 0 : next_id_ - 1);
   }

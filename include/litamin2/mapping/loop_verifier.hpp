@@ -10,6 +10,7 @@
 #include "litamin2/mapping/mapper_config.hpp"
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -29,10 +30,11 @@ struct LoopVerification {
 
 /// Registers `query` (its sensor frame) to `submap` (the candidate's sensor frame) from
 /// `initial` (the query's pose in the submap's frame), searching first over planar offsets of
-/// up to two voxels and yaws of up to half a descriptor sector around it.
+/// up to two voxels and yaws of +-`yaw_step` radians around it (half a descriptor sector: the
+/// descriptor's yaw resolution; the default is half of 60 sectors').
 LoopVerification verify_loop(const std::vector<Distribution>& query, const VoxelMap& submap,
-                             const Eigen::Isometry3d& initial,
-                             const LoopVerificationConfig& config);
+                             const Eigen::Isometry3d& initial, const LoopVerificationConfig& config,
+                             double yaw_step = M_PI / 60.0);
 
 /// The pose of a rotation by `yaw` radians about z.
 Eigen::Isometry3d yaw_pose(double yaw);
