@@ -22,22 +22,26 @@ inline VoxelIndex voxel_index(const Eigen::Vector3d& p, double inv_size) {
                     fast_floor(p.z() * inv_size));
 }
 
+/// Bits per axis of a packed voxel key.
+constexpr int kVoxelKeyBits = 21;
+constexpr std::uint64_t kVoxelKeyMask = (1ull << kVoxelKeyBits) - 1;
+/// Offset added to each axis index before packing: indices in [-2^20, 2^20) are representable.
+constexpr std::int64_t kVoxelKeyOffset = 1ll << (kVoxelKeyBits - 1);
+
 /// Packs a voxel index into 64 bits: 21 bits per axis, i.e. +-1M voxels (3000 km at 3 m).
 inline std::uint64_t pack_voxel(const VoxelIndex& v) {
-  constexpr std::uint64_t kMask = (1ull << 21) - 1;
-  constexpr std::int64_t kOffset = 1ll << 20;
-  return (static_cast<std::uint64_t>(v.x() + kOffset) & kMask) |
-         ((static_cast<std::uint64_t>(v.y() + kOffset) & kMask) << 21) |
-         ((static_cast<std::uint64_t>(v.z() + kOffset) & kMask) << 42);
+  return (static_cast<std::uint64_t>(v.x() + kVoxelKeyOffset) & kVoxelKeyMask) |
+         ((static_cast<std::uint64_t>(v.y() + kVoxelKeyOffset) & kVoxelKeyMask) << kVoxelKeyBits) |
+         ((static_cast<std::uint64_t>(v.z() + kVoxelKeyOffset) & kVoxelKeyMask)
+          << (2 * kVoxelKeyBits));
 }
 
 /// Inverse of pack_voxel.
 inline VoxelIndex unpack_voxel(std::uint64_t key) {
-  constexpr std::uint64_t kMask = (1ull << 21) - 1;
-  constexpr int kOffset = 1 << 20;
-  return VoxelIndex(static_cast<int>(key & kMask) - kOffset,
-                    static_cast<int>((key >> 21) & kMask) - kOffset,
-                    static_cast<int>((key >> 42) & kMask) - kOffset);
+  constexpr int kOffset = static_cast<int>(kVoxelKeyOffset);
+  return VoxelIndex(static_cast<int>(key & kVoxelKeyMask) - kOffset,
+                    static_cast<int>((key >> kVoxelKeyBits) & kVoxelKeyMask) - kOffset,
+                    static_cast<int>((key >> (2 * kVoxelKeyBits)) & kVoxelKeyMask) - kOffset);
 }
 
 /// Hash for packed keys: a multiplicative mix, since the packed key's low bits are one axis.
