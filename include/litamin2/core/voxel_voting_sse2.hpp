@@ -48,6 +48,57 @@ inline bool fits(const VoxelizerConfig& config) {
 
 #if defined(LITAMIN2_HAVE_SSE2_VOTING)
 
+namespace sse2_voting {
+
+/// A run of same-voxel points: sums of (point - origin) as (xx, xy, xz, x), (yx, yy, yz, y),
+/// (zx, zy, zz, z), where the origin is the run's first point (as an offset from the voxel
+/// centre, w lane 0).
+struct Run {
+  std::uint32_t key = kInvalidKey;
+  int count = 0;
+  __m128 origin = _mm_setzero_ps();
+  __m128 sum_x = _mm_setzero_ps(), sum_y = _mm_setzero_ps(), sum_z = _mm_setzero_ps();
+
+  /// Starts a run at a point given as (offset from the voxel centre, 1).
+  void start(std::uint32_t run_key, __m128 offset) {
+    key = run_key;
+    count = 0;
+    origin = _mm_and_ps(offset, _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1)));
+    sum_x = sum_y = sum_z = _mm_setzero_ps();
+  }
+
+  /// Adds a point given as (offset from the voxel centre, 1).
+  void add(__m128 offset) {
+    const __m128 v = _mm_sub_ps(offset, origin);  // (dx, dy, dz, 1)
+    sum_x = _mm_add_ps(sum_x, _mm_mul_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(0, 0, 0, 0))));
+    sum_y = _mm_add_ps(sum_y, _mm_mul_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(1, 1, 1, 1))));
+    sum_z = _mm_add_ps(sum_z, _mm_mul_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 2, 2, 2))));
+    ++count;
+  }
+
+  /// The run's moments about the voxel centre, in double: with delta = origin - centre,
+  /// sum' = sum + n delta, S' = S + sum delta^T + delta sum^T + n delta delta^T.
+  VoxelMoments about_voxel_centre() const {
+    alignas(16) float sx[4], sy[4], sz[4], o[4];
+    _mm_store_ps(sx, sum_x);
+    _mm_store_ps(sy, sum_y);
+    _mm_store_ps(sz, sum_z);
+    _mm_store_ps(o, origin);
+    const double n = count;
+    const double dx = o[0], dy = o[1], dz = o[2];
+    const double x = sx[3], y = sy[3], z = sz[3];
+    VoxelMoments out;
+    out.count = count;
+    out.sum << x + n * dx, y + n * dy, z + n * dz;
+    out.sum_sq << sx[0] + 2.0 * x * dx + n * dx * dx, sx[1] + x * dy + dx * y + n * dx * dy,
+        sx[2] + x * dz + dx * z + n * dx * dz, sy[1] + 2.0 * y * dy + n * dy * dy,
+        sy[2] + y * dz + dy * z + n * dy * dz, sz[2] + 2.0 * z * dz + n * dz * dz;
+    return out;
+  }
+};
+
+}  // namespace sse2_voting
+
 /// vote_points for configs where sse2_voting::fits(config).
 template <class MomentsOf>
 void vote_points_sse2(const Eigen::Vector3f* begin, const Eigen::Vector3f* end,
@@ -86,39 +137,15 @@ void vote_points_sse2(const Eigen::Vector3f* begin, const Eigen::Vector3f* end,
     return _mm_add_epi32(truncated, _mm_castps_si128(rounded_up));  // mask is -1 where set
   };
 
-  // The current run: sums of (point - run origin) as (xx, xy, xz, x), (yx, yy, yz, y),
-  // (zx, zy, zz, z), run origin = its first point's offset from the voxel centre.
-  std::uint32_t run_key = kInvalidKey;
-  int run_count = 0;
-  __m128 run_origin = _mm_setzero_ps();
-  __m128 sum_x = _mm_setzero_ps(), sum_y = _mm_setzero_ps(), sum_z = _mm_setzero_ps();
-
-  auto flush = [&] {
-    if (run_count == 0) return;
-    alignas(16) float sx[4], sy[4], sz[4], o[4];
-    _mm_store_ps(sx, sum_x);
-    _mm_store_ps(sy, sum_y);
-    _mm_store_ps(sz, sum_z);
-    _mm_store_ps(o, run_origin);
+  Run run;
+  auto flush = [&](const Run& finished) {
+    if (finished.count == 0) return;
+    const std::uint32_t key = finished.key;
     const VoxelIndex index(
-        corner_index.x() + static_cast<int>(run_key & kLocalMask) - kLocalBias,
-        corner_index.y() + static_cast<int>((run_key >> kLocalBits) & kLocalMask) - kLocalBias,
-        corner_index.z() + static_cast<int>((run_key >> (2 * kLocalBits)) & kLocalMask) -
-            kLocalBias);
-    // Shift the run's moments from its first point to the voxel centre (in double):
-    // with delta = run origin - centre, sum' = sum + n delta,
-    // S' = S + sum delta^T + delta sum^T + n delta delta^T.
-    const double n = run_count;
-    const Eigen::Vector3d delta(o[0], o[1], o[2]);
-    const Eigen::Vector3d sum(sx[3], sy[3], sz[3]);
-    Eigen::Matrix3d s;
-    s << sx[0], sx[1], sx[2], sy[0], sy[1], sy[2], sz[0], sz[1], sz[2];
-    s += sum * delta.transpose() + delta * sum.transpose() + n * delta * delta.transpose();
-    VoxelMoments run;
-    run.count = run_count;
-    run.sum = sum + n * delta;
-    run.sum_sq << s(0, 0), s(0, 1), s(0, 2), s(1, 1), s(1, 2), s(2, 2);
-    moments_of(index).merge(run);
+        corner_index.x() + static_cast<int>(key & kLocalMask) - kLocalBias,
+        corner_index.y() + static_cast<int>((key >> kLocalBits) & kLocalMask) - kLocalBias,
+        corner_index.z() + static_cast<int>((key >> (2 * kLocalBits)) & kLocalMask) - kLocalBias);
+    moments_of(index).merge(finished.about_voxel_centre());
   };
 
   for (const Eigen::Vector3f* block = begin; block < end; block += kBlockPoints) {
@@ -181,23 +208,14 @@ void vote_points_sse2(const Eigen::Vector3f* begin, const Eigen::Vector3f* end,
       const std::uint32_t key = keys[i];
       if (key == kInvalidKey) continue;
       const __m128 offset = _mm_load_ps(offsets[i]);
-      if (key != run_key || run_count == 0) {
-        flush();
-        run_key = key;
-        run_count = 0;
-        // w lane 0, so (offset - origin).w stays 1 and the w lanes of the sums are first sums.
-        run_origin =
-            _mm_sub_ps(offset, _mm_and_ps(one, _mm_castsi128_ps(_mm_set_epi32(-1, 0, 0, 0))));
-        sum_x = sum_y = sum_z = _mm_setzero_ps();
+      if (key != run.key || run.count == 0) {
+        flush(run);
+        run.start(key, offset);
       }
-      const __m128 v = _mm_sub_ps(offset, run_origin);  // (dx, dy, dz, 1)
-      sum_x = _mm_add_ps(sum_x, _mm_mul_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(0, 0, 0, 0))));
-      sum_y = _mm_add_ps(sum_y, _mm_mul_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(1, 1, 1, 1))));
-      sum_z = _mm_add_ps(sum_z, _mm_mul_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 2, 2, 2))));
-      ++run_count;
+      run.add(offset);
     }
   }
-  flush();
+  flush(run);
 }
 
 #endif  // LITAMIN2_HAVE_SSE2_VOTING
