@@ -2,6 +2,9 @@
 
 #include <nanoflann.hpp>
 
+#include <cmath>
+#include <limits>
+
 namespace litamin2 {
 namespace {
 
@@ -38,6 +41,21 @@ class KdTreeSearch final : public CorrespondenceSearch {
     result.init(&index, &distance_sq);
     tree_.findNeighbors(result, query.data(), nanoflann::SearchParams());
     return (index >= 0 && distance_sq < max_distance_sq) ? index : -1;
+  }
+
+  bool nearest_two(const Eigen::Vector3d& query, NearestTwo& out) const override {
+    int indices[2] = {-1, -1};
+    double distances_sq[2] = {0.0, 0.0};
+    out = NearestTwo();
+    out.second_distance = std::numeric_limits<double>::infinity();
+    if (cloud_.distributions.empty()) return true;
+    nanoflann::KNNResultSet<double, int> result(2);
+    result.init(indices, distances_sq);
+    tree_.findNeighbors(result, query.data(), nanoflann::SearchParams());
+    out.index = indices[0];
+    out.distance_sq = distances_sq[0];
+    if (result.size() > 1) out.second_distance = std::sqrt(distances_sq[1]);
+    return true;
   }
 
  private:

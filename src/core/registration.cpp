@@ -66,7 +66,7 @@ void add_into(CostEvaluation& total, const CostEvaluation& part) {
 
 CostEvaluation evaluate_cost(const std::vector<Distribution>& source, const VoxelMap& map,
                              const CorrespondenceSearch& search, const Eigen::Isometry3d& pose,
-                             const RegistrationConfig& config) {
+                             const RegistrationConfig& config, NearestCache* cache) {
   const double max_distance = config.max_correspondence_distance > 0.0
                                   ? config.max_correspondence_distance
                                   : map.voxel_size();
@@ -84,7 +84,9 @@ CostEvaluation evaluate_cost(const std::vector<Distribution>& source, const Voxe
         for (std::size_t b = range.begin(); b != range.end(); ++b) {
           const std::size_t end = std::min(source.size(), (b + 1) * block);
           for (std::size_t i = b * block; i < end; ++i) {
-            const int match = search.nearest(pose * source[i].mean, max_distance_sq);
+            const Eigen::Vector3d query = pose * source[i].mean;
+            const int match = cache ? cache->nearest(i, query, max_distance_sq)
+                                    : search.nearest(query, max_distance_sq);
             if (match >= 0) {
               accumulate_correspondence(source[i], targets[match], pose, config, partial[b]);
             }
@@ -104,8 +106,9 @@ RegistrationResult register_distributions(const std::vector<Distribution>& sourc
                                           const RegistrationConfig& config) {
   RegistrationResult result;
   result.pose = initial;
+  NearestCache cache(search, map.distributions(), source.size());
   for (int iteration = 0; iteration < config.max_iterations; ++iteration) {
-    const CostEvaluation eval = evaluate_cost(source, map, search, result.pose, config);
+    const CostEvaluation eval = evaluate_cost(source, map, search, result.pose, config, &cache);
     result.iterations = iteration + 1;
     result.cost = eval.cost;
     result.correspondences = eval.correspondences;

@@ -13,12 +13,29 @@ namespace litamin2 {
 
 enum class CorrespondenceMethod { Voxel27, KdTree };
 
+/// The two map means nearest to a query, for reusing a search when the query moves
+/// (NearestCache).
+struct NearestTwo {
+  /// Index into map.distributions() of the nearest mean (whatever its distance), or -1.
+  int index = -1;
+  /// Squared distance to it.
+  double distance_sq = 0.0;
+  /// Distance to the second nearest mean; infinite when there is none.
+  double second_distance = 0.0;
+};
+
 class CorrespondenceSearch {
  public:
   virtual ~CorrespondenceSearch() = default;
   /// Index into map.distributions() of the nearest mean within sqrt(max_distance_sq) of
   /// `query`, or -1.
   virtual int nearest(const Eigen::Vector3d& query, double max_distance_sq) const = 0;
+  /// The nearest and second nearest means, without a distance limit, where the search supports
+  /// it (false otherwise). For any query, `nearest(query, d2)` is `nearest_two(query).index`
+  /// if its distance_sq < d2, else -1.
+  virtual bool nearest_two(const Eigen::Vector3d& /*query*/, NearestTwo& /*out*/) const {
+    return false;
+  }
 };
 
 /// Builds the search of the given kind over the map's current distributions. The map must

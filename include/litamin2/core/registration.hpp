@@ -4,6 +4,7 @@
 
 #include "litamin2/core/correspondence_search.hpp"
 #include "litamin2/core/distribution.hpp"
+#include "litamin2/core/nearest_cache.hpp"
 #include "litamin2/core/registration_config.hpp"
 #include "litamin2/core/voxel_map.hpp"
 
@@ -45,10 +46,12 @@ struct CostEvaluation {
   int correspondences = 0;
 };
 
-/// Evaluates the cost of `source` (in its own frame) against `map` at `pose`.
+/// Evaluates the cost of `source` (in its own frame) against `map` at `pose`. With a cache
+/// (one slot per source distribution, over the same search), correspondences are looked up
+/// through it: the same ones, fewer searches.
 CostEvaluation evaluate_cost(const std::vector<Distribution>& source, const VoxelMap& map,
                              const CorrespondenceSearch& search, const Eigen::Isometry3d& pose,
-                             const RegistrationConfig& config);
+                             const RegistrationConfig& config, NearestCache* cache = nullptr);
 
 /// Registers `source` to `map` starting from `initial`.
 RegistrationResult register_distributions(const std::vector<Distribution>& source,
