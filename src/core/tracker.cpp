@@ -69,8 +69,7 @@ FrameResult Tracker::process(const PointCloud& scan) {
   frame.keyframe = frames_ == 0 || !frame.registered || is_keyframe(estimate);
   if (frame.keyframe) {
     const auto start = std::chrono::steady_clock::now();
-    map_.insert(voxelizer_.last_voxels(), estimate);
-    map_.remove_far(estimate.translation());
+    map_.add_keyframe(voxelizer_.last_voxels(), estimate);
     search_ = make_correspondence_search(config_.registration.correspondence, map_);
     last_keyframe_ = estimate;
     frame.times.map_update_ms = elapsed_ms(start);

@@ -48,6 +48,21 @@ void VoxelMap::insert(const PointCloud& scan, const Eigen::Isometry3d& pose) {
 }
 
 void VoxelMap::insert(const GridVoxels& voxels, const Eigen::Isometry3d& pose) {
+  merge_grid_voxels(voxels, pose);
+  rebuild_distributions();
+}
+
+void VoxelMap::remove_far(const Eigen::Vector3d& position) {
+  if (drop_far_cells(position)) rebuild_distributions();
+}
+
+void VoxelMap::add_keyframe(const GridVoxels& voxels, const Eigen::Isometry3d& pose) {
+  merge_grid_voxels(voxels, pose);
+  drop_far_cells(pose.translation());
+  rebuild_distributions();
+}
+
+void VoxelMap::merge_grid_voxels(const GridVoxels& voxels, const Eigen::Isometry3d& pose) {
   const Eigen::Isometry3d correction = pose * voxels.grid_pose.inverse();
   const Eigen::Matrix3d r = correction.linear();
   const Eigen::Vector3d t = correction.translation();
@@ -68,10 +83,9 @@ void VoxelMap::insert(const GridVoxels& voxels, const Eigen::Isometry3d& pose) {
     cell.moments.merge(moments.transformed(r, t, cell.moments.origin));
     cell.dirty = true;
   }
-  rebuild_distributions();
 }
 
-void VoxelMap::remove_far(const Eigen::Vector3d& position) {
+bool VoxelMap::drop_far_cells(const Eigen::Vector3d& position) {
   Cells& c = *cells_;
   const double radius_sq = config_.radius * config_.radius;
   std::size_t kept = 0;
@@ -81,13 +95,13 @@ void VoxelMap::remove_far(const Eigen::Vector3d& position) {
       ++kept;
     }
   }
-  if (kept == c.cells.size()) return;
+  if (kept == c.cells.size()) return false;
   c.cells.resize(kept);
   c.cell_of_key.clear();
   for (std::size_t i = 0; i < c.cells.size(); ++i) {
     c.cell_of_key.emplace(c.cells[i].key, static_cast<int>(i));
   }
-  rebuild_distributions();
+  return true;
 }
 
 void VoxelMap::rebuild_distributions() {

@@ -90,6 +90,36 @@ TEST(VoxelMap, MergingGridVoxelsWithoutCorrectionEqualsRevoting) {
   }
 }
 
+TEST(VoxelMap, AddKeyframeEqualsInsertThenRemoveFar) {
+  VoxelizerConfig config;
+  VoxelMapConfig map_config;
+  map_config.radius = 25.0;  // small, so the second keyframe drops voxels of the first
+  VoxelMap separate(config, map_config), combined(config, map_config);
+  Voxelizer voxelizer(config);
+  for (int k = 0; k < 3; ++k) {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = so3_exp(Eigen::Vector3d(0.0, 0.0, 0.1 * k));
+    pose.translation() = Eigen::Vector3d(15.0 * k, 2.0 * k, 0.0);
+    voxelizer.voxelize(testing::synthetic_scene(5 + k), pose);
+    const std::size_t before = separate.num_voxels();
+    separate.insert(voxelizer.last_voxels(), pose);
+    const std::size_t inserted = separate.num_voxels();
+    separate.remove_far(pose.translation());
+    if (k > 0) {
+      EXPECT_LT(separate.num_voxels(), inserted) << "keyframe " << k << " removed none";
+    }
+    EXPECT_GT(inserted, before);
+    combined.add_keyframe(voxelizer.last_voxels(), pose);
+    ASSERT_EQ(combined.num_voxels(), separate.num_voxels());
+    ASSERT_EQ(combined.distributions().size(), separate.distributions().size());
+    for (std::size_t i = 0; i < separate.distributions().size(); ++i) {
+      EXPECT_EQ(combined.distributions()[i].count, separate.distributions()[i].count);
+      EXPECT_EQ(combined.distributions()[i].mean, separate.distributions()[i].mean);
+      EXPECT_EQ(combined.distributions()[i].cov, separate.distributions()[i].cov);
+    }
+  }
+}
+
 TEST(VoxelMap, MergingWithCorrectionMovesEveryVoxelExactly) {
   // With a correction, each grid voxel moves whole (boundary points are not re-assigned), so
   // the map's total moments equal those of the points at the final pose.

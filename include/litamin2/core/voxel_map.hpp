@@ -37,6 +37,9 @@ class VoxelMap {
   void insert(const GridVoxels& voxels, const Eigen::Isometry3d& pose);
   /// Drops every voxel whose centre is farther than the configured radius from `position`.
   void remove_far(const Eigen::Vector3d& position);
+  /// A keyframe's update: insert(voxels, pose) then remove_far(pose.translation()), with the
+  /// distributions rebuilt once instead of twice (same result).
+  void add_keyframe(const GridVoxels& voxels, const Eigen::Isometry3d& pose);
 
   /// Distributions of the voxels with enough points, world frame.
   const std::vector<Distribution>& distributions() const { return distributions_; }
@@ -49,6 +52,9 @@ class VoxelMap {
   bool empty() const { return distributions_.empty(); }
 
  private:
+  void merge_grid_voxels(const GridVoxels& voxels, const Eigen::Isometry3d& pose);
+  /// Drops the far voxels; true if there were any.
+  bool drop_far_cells(const Eigen::Vector3d& position);
   void rebuild_distributions();
 
   struct Cells;
