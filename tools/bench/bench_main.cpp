@@ -45,12 +45,15 @@ void in_arena(benchmark::State& state, Body&& body) {
   arena.execute([&] { body(); });
 }
 
+/// Voxelisation of a real scan; argument: threads.
 void BM_Voxelize(benchmark::State& state) {
   Voxelizer voxelizer(VoxelizerConfig{});
-  for (auto _ : state) benchmark::DoNotOptimize(voxelizer.voxelize(real_pair().source));
+  in_arena(state, [&] {
+    for (auto _ : state) benchmark::DoNotOptimize(voxelizer.voxelize(real_pair().source));
+  });
   state.SetItemsProcessed(state.iterations() * real_pair().source.size());
 }
-BENCHMARK(BM_Voxelize)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Voxelize)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 void BM_MapInsert(benchmark::State& state) {
   for (auto _ : state) {
