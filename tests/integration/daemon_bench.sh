@@ -3,7 +3,8 @@
 # daemon (loopback profile, private network namespace); prints per-stream latency (arrival ->
 # odometry published, p50/p99 from the daemon's status), frames dropped, and the offline tool's
 # frames/s on the same scans for comparison. Not a CTest test (timing depends on the machine).
-# QUEUE_DEPTH (default 4) sets the daemon's per-stream queue.
+# QUEUE_DEPTH (default 4) sets the daemon's per-stream queue; PRELOAD=0 makes the replay read
+# scans while publishing instead of before (litamin2-replay --preload).
 # Usage: daemon_bench.sh BUILD_DIR WORK_DIR STREAMS [RATE_HZ=10|max] [FRAMES=30] [THREADS=0]
 set -euo pipefail
 source "$(dirname "$0")/daemon_netns.sh"
@@ -51,7 +52,11 @@ probe_pid=$!
 for _ in $(seq 1 300); do [ -f probe.ready ] && break; sleep 0.1; done
 start=$(date +%s.%N)
 if [ "$rate" = max ]; then rate_args=(--max); else rate_args=(--rate "$rate"); fi
-"$tools/replay/litamin2-replay" --domain 19 --profile loopback "${rate_args[@]}" \
+# The replay reads and converts every scan before publishing (PRELOAD=0: while publishing), so
+# that on this one machine its disk reading does not take CPU from the daemon it measures.
+preload_args=()
+if [ "${PRELOAD:-1}" = 1 ]; then preload_args=(--preload); fi
+"$tools/replay/litamin2-replay" --domain 19 --profile loopback "${rate_args[@]}" "${preload_args[@]}" \
   "${replay_dirs[@]}" "${replay_streams[@]}" > replay.log 2>&1 || true
 wait $probe_pid || true
 end=$(date +%s.%N)

@@ -17,6 +17,9 @@
 # The probe checks that every odometry pose is bit-identical to the offline tool's and that
 # nothing was dropped.
 #
+# The replay reads every scan before publishing (--preload; PRELOAD=0: while publishing), so that
+# its disk reading does not take CPU from the daemon during the measurement.
+#
 # Usage: daemon_overhead.sh BUILD_DIR WORK_DIR [FRAMES=300] [ROUNDS=3]
 set -euo pipefail
 source "$(dirname "$0")/daemon_netns.sh"
@@ -26,6 +29,8 @@ frames=${3:-300}
 rounds=${4:-3}
 tools=$build/tools
 domain=24
+preload_args=()
+if [ "${PRELOAD:-1}" = 1 ]; then preload_args=(--preload); fi
 mkdir -p "$work"
 cd "$work"
 if [ ! -f seq/times.txt ] || [ "$(ls seq/velodyne | wc -l)" -ne "$frames" ]; then
@@ -80,7 +85,7 @@ daemon_round() {  # daemon_round R: writes "frames/s (first to last result), fra
   local start end
   start=$(date +%s.%N)
   timeout 300 "$tools/replay/litamin2-replay" --domain $domain --profile loopback --max \
-    --depth 10 seq --stream overhead > "replay_$r.log" 2>&1 ||
+    "${preload_args[@]}" --depth 10 seq --stream overhead > "replay_$r.log" 2>&1 ||
     { cat "replay_$r.log" "daemon_$r.log" >&2; exit 1; }
   local probe_status=0
   wait $probe_pid || probe_status=$?

@@ -47,9 +47,9 @@ probe_pid=$!
 for _ in $(seq 1 200); do [ -f probe.ready ] && break; sleep 0.1; done
 test -f probe.ready || { echo "probe never matched the daemon's odometry writers"; cat daemon.log probe.log; exit 1; }
 
-echo "== replay both streams at full speed"
+echo "== replay both streams at full speed (scans preloaded)"
 start=$(date +%s.%N)
-timeout 300 "$tools/replay/litamin2-replay" --domain 17 --profile loopback --max \
+timeout 300 "$tools/replay/litamin2-replay" --domain 17 --profile loopback --max --preload \
   seq seq --stream car_a --stream car_b > replay.log 2>&1 || { cat replay.log daemon.log; exit 1; }
 probe_status=0
 wait $probe_pid || probe_status=$?

@@ -113,6 +113,20 @@ int main(int argc, char** argv) {
                  topic_name, options.best_effort ? "best-effort" : "reliable keep-all");
   }
 
+  if (options.preload) {
+    const auto preload_start = Clock::now();
+    std::size_t frames = 0;
+    for (const auto& stream : streams) {
+      if (!stream->preload()) {
+        spdlog::error("stream {}: cannot preload: {}", stream->stream(), stream->error());
+        return kExitError;
+      }
+      frames += stream->frame_count();
+    }
+    spdlog::info("preloaded {} scans in {:.1f} s", frames,
+                 std::chrono::duration<double>(Clock::now() - preload_start).count());
+  }
+
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
 

@@ -70,6 +70,10 @@ int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& sh
                            "Publish as fast as the writers allow (reliable: as fast as the "
                            "slowest reader acknowledges)");
   rate->excludes(max);
+  app.add_flag("--preload", options.preload,
+               "Read and convert every scan before publishing the first (memory: ~2 MB per "
+               "HDL-64 scan and stream, freed as written), so that reading does not compete with "
+               "the subscribers for the CPU; for benchmarks on one machine");
   app.add_option("--domain", domain, "DDS domain id (default 0)")->check(CLI::Range(0, 232));
   app.add_option("--profile", profile,
                  "Transport: loopback (default: 127.0.0.1 and shared memory only), shm, default, "

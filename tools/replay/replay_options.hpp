@@ -37,6 +37,11 @@ struct ReplayOptions {
   bool best_effort = false;
   /// Writer history depth (keep-all: samples held until acknowledged).
   int depth = 10;
+  /// Read and convert every scan before the first is published, so that reading and
+  /// converting do not share the CPU with the subscribers while publishing (benchmarks on one
+  /// machine). Costs the scans' size in memory (~2 MB per HDL-64 scan and stream); each is
+  /// freed once written.
+  bool preload = false;
 };
 
 /// Parses the command line. Returns 0 and fills `options` to run, or the process exit code

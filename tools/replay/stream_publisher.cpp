@@ -30,12 +30,9 @@ void StreamPublisher::run(Clock::time_point start, std::chrono::nanoseconds peri
                           const std::atomic<bool>& stop, bool reliable, double timeout_s) {
   for (std::size_t i = first_; i < last_ && !stop.load(); ++i) {
     sensor_msgs::msg::PointCloud2 msg;
-    try {
-      const PointCloud cloud = sequence_.load(i);
-      msg = dds::to_pointcloud2(cloud, sequence_.timestamp(i), stream_);
-    } catch (const std::exception& e) {
-      error_ = "scan " + std::to_string(i) + " (" + sequence_.path(i) + "): " + e.what();
-      spdlog::error("{}: {}", stream_, error_);
+    if (!preloaded_.empty()) {
+      msg = std::move(preloaded_[i - first_]);
+    } else if (!convert(i, msg)) {
       break;
     }
     const auto slot = start + period * static_cast<std::int64_t>(i - first_);
@@ -70,6 +67,29 @@ void StreamPublisher::run(Clock::time_point start, std::chrono::nanoseconds peri
     }
     elapsed_s_ = std::chrono::duration<double>(after - start).count();
   }
+}
+
+bool StreamPublisher::convert(std::size_t i, sensor_msgs::msg::PointCloud2& msg) {
+  try {
+    msg = dds::to_pointcloud2(sequence_.load(i), sequence_.timestamp(i), stream_);
+    return true;
+  } catch (const std::exception& e) {
+    error_ = "scan " + std::to_string(i) + " (" + sequence_.path(i) + "): " + e.what();
+    spdlog::error("{}: {}", stream_, error_);
+    return false;
+  }
+}
+
+bool StreamPublisher::preload() {
+  preloaded_.clear();
+  preloaded_.resize(last_ - first_);
+  for (std::size_t i = first_; i < last_; ++i) {
+    if (!convert(i, preloaded_[i - first_])) {
+      preloaded_.clear();
+      return false;
+    }
+  }
+  return true;
 }
 
 bool StreamPublisher::wait_for_acknowledgments(double timeout_s) {

@@ -5,10 +5,12 @@
 #include <chrono>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <fastdds/dds/publisher/DataWriter.hpp>
 
 #include "litamin2/io/kitti_sequence.hpp"
+#include "sensor_msgs/msg/PointCloud2.h"
 
 namespace litamin2::replay {
 
@@ -57,6 +59,9 @@ class StreamPublisher {
 
   /// Waits until every reliable reader acknowledged all samples, at most `timeout_s`.
   bool wait_for_acknowledgments(double timeout_s);
+  /// Reads and converts every frame now instead of before its slot in run(). False (with
+  /// error() set) if a scan cannot be read.
+  bool preload();
 
  private:
   std::string stream_;
@@ -66,6 +71,10 @@ class StreamPublisher {
   eprosima::fastdds::dds::DataWriter* writer_;
   StreamCounters counters_;
   std::string error_;
+  /// Frames [first, last) converted by preload(), emptied as they are written.
+  std::vector<sensor_msgs::msg::PointCloud2> preloaded_;
+  /// Reads and converts frame i into `msg`; false (error_ set) if it cannot be read.
+  bool convert(std::size_t i, sensor_msgs::msg::PointCloud2& msg);
   double elapsed_s_ = 0.0;
 };
 
