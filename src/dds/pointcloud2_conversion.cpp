@@ -228,6 +228,30 @@ CloudError from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
   const std::uint8_t* data = msg.data().data();
   const bool fast = !swap && specs[0].datatype == kFloat32 && specs[1].datatype == kFloat32 &&
                     specs[2].datatype == kFloat32;
+  if (fast && !with_intensity) {
+    // The common case (native float32 x, y, z; intensity not wanted): write in place, no
+    // per-point capacity checks or datatype switches.
+    points.resize(static_cast<std::size_t>(total));
+    Eigen::Vector3f* next = points.data();
+    const std::size_t ox = specs[0].offset, oy = specs[1].offset, oz = specs[2].offset;
+    for (std::uint64_t row = 0; row < height; ++row) {
+      const std::uint8_t* p = data + row * row_step;
+      for (std::uint64_t col = 0; col < width; ++col, p += point_step) {
+        float x, y, z;
+        std::memcpy(&x, p + ox, 4);
+        std::memcpy(&y, p + oy, 4);
+        std::memcpy(&z, p + oz, 4);
+        // x - x is 0 for finite x and NaN for NaN or +-Inf: one test for all three.
+        if ((x - x) + (y - y) + (z - z) == 0.0f) {
+          *next++ = Eigen::Vector3f(x, y, z);
+        } else {
+          ++out.non_finite;
+        }
+      }
+    }
+    points.resize(static_cast<std::size_t>(next - points.data()));
+    return CloudError::kNone;
+  }
   for (std::uint64_t row = 0; row < height; ++row) {
     const std::uint8_t* row_ptr = data + row * row_step;
     for (std::uint64_t col = 0; col < width; ++col) {

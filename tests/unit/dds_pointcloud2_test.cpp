@@ -177,6 +177,41 @@ TEST(DdsPointCloud2, NonFinitePointsAreDroppedAndCounted) {
   EXPECT_EQ(result.cloud.points[6], cloud.points[9]);
 }
 
+TEST(DdsPointCloud2, WithoutIntensityGivesTheSamePointsOnEveryLayout) {
+  // read_intensity = false takes a faster loop for native float32 x, y, z: same points, same
+  // non-finite count as the general loop, for packed and for organised, padded rows.
+  PointCloud cloud = random_cloud(600, true, 7);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  for (std::size_t i = 0; i < cloud.size(); i += 37) cloud.points[i].x() = nan;
+  for (std::size_t i = 5; i < cloud.size(); i += 53) cloud.points[i].y() = inf;
+  for (std::size_t i = 9; i < cloud.size(); i += 71) cloud.points[i].z() = -inf;
+  sensor_msgs::msg::PointCloud2 padded = to_pointcloud2(cloud, 0.0, "f");
+  padded.height(3);
+  padded.width(200);
+  padded.row_step(200 * padded.point_step() + 12);
+  std::vector<std::uint8_t> data(padded.row_step() * 3, 0xCD);
+  for (std::uint32_t r = 0; r < 3; ++r) {
+    std::memcpy(data.data() + r * padded.row_step(),
+                padded.data().data() + r * 200 * padded.point_step(), 200 * padded.point_step());
+  }
+  padded.data(std::move(data));
+  CloudConversionOptions xyz_only;
+  xyz_only.read_intensity = false;
+  for (const auto& msg : {to_pointcloud2(cloud, 0.0, "f"), padded, odd_layout(cloud, 4, true)}) {
+    const CloudConversion general = from_pointcloud2(msg);
+    const CloudConversion fast = from_pointcloud2(msg, xyz_only);
+    ASSERT_TRUE(general.ok());
+    ASSERT_TRUE(fast.ok());
+    EXPECT_GT(fast.non_finite, 20u);
+    EXPECT_EQ(fast.non_finite, general.non_finite);
+    EXPECT_EQ(fast.total_points, general.total_points);
+    EXPECT_TRUE(fast.cloud.intensities.empty());
+    ASSERT_EQ(fast.cloud.points.size(), general.cloud.points.size());
+    EXPECT_EQ(fast.cloud.points, general.cloud.points);
+  }
+}
+
 TEST(DdsPointCloud2, Float64OutOfFloatRangeIsNonFinite) {
   PointCloud cloud;
   cloud.points.emplace_back(1.0f, 2.0f, 3.0f);

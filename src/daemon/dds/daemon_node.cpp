@@ -114,7 +114,11 @@ DaemonNode::Stream& DaemonNode::add_stream(StreamConfig config) {
   s.processor = std::make_unique<StreamProcessor>(s.config, *s.sink, s.stats);
   StreamProcessor* processor = s.processor.get();
   s.handle = scheduler_->add_stream(s.config.id, [processor](Frame& f) { processor->process(f); });
-  s.listener = std::make_unique<PointsListener>(s.config.id, *scheduler_, s.handle, s.stats);
+  // LiTAMIN2 uses only x, y, z: the intensity field is not read.
+  dds::CloudConversionOptions conversion;
+  conversion.read_intensity = false;
+  s.listener =
+      std::make_unique<PointsListener>(s.config.id, *scheduler_, s.handle, s.stats, conversion);
   spdlog::info("stream {}: {} -> {}", s.config.id, s.config.topic, odom_topic_name);
   streams_.push_back(std::move(stream));
   return s;
