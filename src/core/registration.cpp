@@ -10,6 +10,7 @@
 #include <tbb/partitioner.h>
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 
 namespace litamin2 {
 namespace {
@@ -31,6 +32,7 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
   out.hessian += w_icp * icp.hessian;
   ++out.correspondences;
   if (config.mode != CostMode::IcpCov) return;
+  if (std::min(source.count, target.count) < config.cov_min_points) return;
 
   // Cov term, Eq. 4: E_cov = f^2 (or f, Table 1), rotation only.
   const Eigen::Matrix3d rotated_shape = rotation * source.shape_cov * rotation.transpose();

@@ -118,6 +118,31 @@ TEST(Registration, BitIdenticalForAnyThreadCount) {
   }
 }
 
+TEST(Registration, CovMinPointsGatesOnlyTheCovTerm) {
+  VoxelizerConfig voxels;
+  VoxelMap map(voxels, VoxelMapConfig{});
+  map.insert(testing::synthetic_scene(1), Eigen::Isometry3d::Identity());
+  Voxelizer voxelizer(voxels);
+  const auto search = make_correspondence_search(CorrespondenceMethod::Voxel27, map);
+  const Eigen::Isometry3d pose =
+      make_pose(Eigen::Vector3d(0.5, -0.3, 2), Eigen::Vector3d(0.2, 0.1, 0));
+  const std::vector<Distribution> source = voxelizer.voxelize(testing::synthetic_scene(2), pose);
+  RegistrationConfig config;
+  config.mode = CostMode::Icp;
+  const CostEvaluation icp = evaluate_cost(source, map, *search, pose, config);
+  config.mode = CostMode::IcpCov;
+  config.cov_min_points = 0;  // every correspondence (the paper)
+  const CostEvaluation all = evaluate_cost(source, map, *search, pose, config);
+  config.cov_min_points = 1 << 30;  // no distribution has that many points: ICP term only
+  const CostEvaluation none = evaluate_cost(source, map, *search, pose, config);
+  EXPECT_EQ(none.cost, icp.cost);
+  EXPECT_EQ(none.gradient, icp.gradient);
+  EXPECT_EQ(none.correspondences, icp.correspondences);
+  EXPECT_GT(all.cost, icp.cost);
+  EXPECT_GT((all.gradient - icp.gradient).head<3>().norm(), 0.0);
+  EXPECT_EQ(all.gradient.tail<3>(), icp.gradient.tail<3>());  // the Cov term is free of t
+}
+
 TEST(Registration, FailsCleanlyWithoutOverlap) {
   VoxelizerConfig voxels;
   VoxelMap map(voxels, VoxelMapConfig{});
