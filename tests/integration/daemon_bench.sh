@@ -4,7 +4,8 @@
 # odometry published, p50/p99 from the daemon's status), frames dropped, and the offline tool's
 # frames/s on the same scans for comparison. Not a CTest test (timing depends on the machine).
 # QUEUE_DEPTH (default 4) sets the daemon's per-stream queue; PRELOAD=0 makes the replay read
-# scans while publishing instead of before (litamin2-replay --preload).
+# scans while publishing instead of before (litamin2-replay --preload); STAGGER=1 spreads the
+# streams over the period (litamin2-replay --stagger).
 # Usage: daemon_bench.sh BUILD_DIR WORK_DIR STREAMS [RATE_HZ=10|max] [FRAMES=30] [THREADS=0]
 set -euo pipefail
 source "$(dirname "$0")/daemon_netns.sh"
@@ -56,6 +57,9 @@ if [ "$rate" = max ]; then rate_args=(--max); else rate_args=(--rate "$rate"); f
 # that on this one machine its disk reading does not take CPU from the daemon it measures.
 preload_args=()
 if [ "${PRELOAD:-1}" = 1 ]; then preload_args=(--preload); fi
+# STAGGER=1 spreads the streams' frames over the period (independent sensors); default: every
+# stream publishes at the same instant, the worst case for latency.
+if [ "${STAGGER:-0}" = 1 ] && [ "$rate" != max ]; then preload_args+=(--stagger); fi
 "$tools/replay/litamin2-replay" --domain 19 --profile loopback "${rate_args[@]}" "${preload_args[@]}" \
   "${replay_dirs[@]}" "${replay_streams[@]}" > replay.log 2>&1 || true
 wait $probe_pid || true

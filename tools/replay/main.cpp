@@ -168,9 +168,13 @@ int main(int argc, char** argv) {
                        : std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / options.rate_hz));
   const auto start = Clock::now() + std::chrono::milliseconds(10);
   std::vector<std::thread> threads;
-  for (auto& stream : streams) {
-    threads.emplace_back([&stream, start, period, &options] {
-      stream->run(start, period, g_stop, !options.best_effort, options.timeout_s);
+  for (std::size_t s = 0; s < streams.size(); ++s) {
+    const auto stream_start = options.stagger
+                                  ? start + period * static_cast<std::int64_t>(s) /
+                                                static_cast<std::int64_t>(streams.size())
+                                  : start;
+    threads.emplace_back([&stream = streams[s], stream_start, period, &options] {
+      stream->run(stream_start, period, g_stop, !options.best_effort, options.timeout_s);
     });
   }
   std::size_t total_frames = 0;

@@ -70,6 +70,11 @@ int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& sh
                            "Publish as fast as the writers allow (reliable: as fast as the "
                            "slowest reader acknowledges)");
   rate->excludes(max);
+  app.add_flag("--stagger", options.stagger,
+               "Spread the streams over one period (stream s of N starts s/N of a period "
+               "later), as independent sensors are; default: all streams publish at the same "
+               "instants (the worst case for a subscriber)")
+      ->excludes(max);
   app.add_flag("--preload", options.preload,
                "Read and convert every scan before publishing the first (memory: ~2 MB per "
                "HDL-64 scan and stream, freed as written), so that reading does not compete with "

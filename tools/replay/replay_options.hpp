@@ -42,6 +42,9 @@ struct ReplayOptions {
   /// machine). Costs the scans' size in memory (~2 MB per HDL-64 scan and stream); each is
   /// freed once written.
   bool preload = false;
+  /// Spread the streams' schedules over one period (stream s starts s/N of a period later),
+  /// as independent sensors are, instead of publishing every stream's frame at the same instant.
+  bool stagger = false;
 };
 
 /// Parses the command line. Returns 0 and fills `options` to run, or the process exit code
