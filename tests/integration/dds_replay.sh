@@ -84,6 +84,23 @@ finish_subscriber paced
 check "paced: all scans identical" 0 $SUB_RC
 awk -v a="$T0" -v b="$T1" 'BEGIN { exit !(b - a >= 0.2) }' || { echo "FAIL: 20 Hz too fast"; FAIL=1; }
 
+# 2b. Preloaded and staggered: two streams at 20 Hz, the second half a period after the first;
+#     every scan arrives identical, and the whole takes at least 6.5 periods (0.325 s).
+start_subscriber staggered car1="$WORK/a" fleet/car2="$WORK/b" || exit 1
+T0=$(date +%s.%N)
+timeout 90 "$REPLAY" --stream car1 --stream fleet/car2 --rate 20 --stagger --preload \
+  --domain "$DOMAIN" --profile loopback --timeout 30 "$WORK/a" "$WORK/b" \
+  >"$WORK/staggered.replay.log" 2>&1
+RC=$?
+T1=$(date +%s.%N)
+cat "$WORK/staggered.replay.log"
+check "staggered: replay exit" 0 $RC
+finish_subscriber staggered
+check "staggered: all scans identical" 0 $SUB_RC
+grep -q "preloaded 12 scans" "$WORK/staggered.replay.log" || { echo "FAIL: no preload"; FAIL=1; }
+awk -v a="$T0" -v b="$T1" 'BEGIN { exit !(b - a >= 0.325) }' ||
+  { echo "FAIL: staggered 20 Hz too fast"; FAIL=1; }
+
 # 3. Large scans (120001 points, 1.9 MB) on two streams at --max with a shallow writer history
 #    (--depth 2): the reliable writers must block or retry, never drop a scan.
 "$SUB" make-sequence "$WORK/big1" 20 120001 3 || exit 1
@@ -120,5 +137,7 @@ check "unknown profile" 1 $?
 check "frames beyond the sequence" 1 $?
 "$REPLAY" --stream car1 --rate 0 "$WORK/a" >/dev/null 2>&1
 check "rate 0" 1 $?
+"$REPLAY" --stream car1 --max --stagger "$WORK/a" >/dev/null 2>&1
+check "--stagger with --max" 1 $?
 
 exit $FAIL

@@ -16,6 +16,7 @@ expect() {  # expect NAME PATTERN -- command...
     echo "ok   $name"
   fi
 }
+expect unknown-mode "mode" -- "$odo" --mode gicp -o "$work/out" "$work/seq"
 expect missing-input "no-such-folder" -- "$odo" -o "$work/out" "$work/no-such-folder"
 expect empty-folder "seq" -- "$odo" -o "$work/out" "$work/seq"
 head -c 1001 /dev/urandom > "$work/seq/000000.bin"

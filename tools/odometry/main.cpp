@@ -303,7 +303,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return app.exit(e) == 0 ? 0 : 1;  // CLI11 errors are bad input: exit 1, as documented
   }
   try {
     return run(options);

@@ -104,7 +104,7 @@ int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& sh
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return app.exit(e) == 0 ? 0 : 1;  // CLI11 errors are bad input: exit 1, as documented
   }
 
   const auto fail = [](const std::string& message) {
