@@ -5,8 +5,11 @@
 #include "litamin2/core/voxel_map.hpp"
 #include "litamin2/mapping/distribution_moments.hpp"
 #include "litamin2/mapping/loop_verifier.hpp"
+#include "litamin2/mapping/odometry_covariance.hpp"
 #include "litamin2/mapping/place_descriptor.hpp"
 #include "litamin2/mapping/pose_graph.hpp"
+
+#include <Eigen/Cholesky>
 
 #include <algorithm>
 #include <cmath>
@@ -276,6 +279,24 @@ struct Mapper::Impl {
     return sigma;
   }
 
+  /// The odometry edge from keyframe a to the next present keyframe b of its stream: its
+  /// uncertainty by distance, or from b's tracker covariance (PoseGraphConfig::
+  /// odometry_covariance). b's covariance is relative to a only when b directly follows a (no
+  /// keyframe missing in between); otherwise, and when b has none, by distance.
+  void set_odometry_uncertainty(PoseGraphEdge& e, const Keyframe& a, const Keyframe& b) const {
+    const PoseGraphConfig& g = config.graph;
+    e.sigma = odometry_sigma(e.relative.translation().norm());
+    if (g.odometry_covariance != OdometryCovariance::Tracker || b.covariance.isZero(0.0) ||
+        b.key.id != a.key.id + 1)
+      return;
+    Matrix6d c = relative_pose_covariance(a.odom_pose, b.odom_pose, b.covariance) *
+                 (g.tracker_covariance_scale * g.tracker_covariance_scale);
+    const double st = g.tracker_translation_sigma_min;
+    const double sr = g.tracker_rotation_sigma_min_deg * kDegToRad;
+    c.diagonal() += Vector6d(st * st, st * st, st * st, sr * sr, sr * sr, sr * sr);
+    if (c.allFinite() && c.llt().info() == Eigen::Success) e.covariance = c;
+  }
+
   static Vector6d loop_sigma(const LoopEdge& loop) {
     // LoopEdge information is in (phi, tau) order; the graph's sigma in (t, phi) order.
     const Vector6d info = loop.information.diagonal();
@@ -321,7 +342,7 @@ struct Mapper::Impl {
           e.from = index.at(previous->keyframe.key);
           e.to = index.at(entry.keyframe.key);
           e.relative = previous->keyframe.odom_pose.inverse() * entry.keyframe.odom_pose;
-          e.sigma = odometry_sigma(e.relative.translation().norm());
+          set_odometry_uncertainty(e, previous->keyframe, entry.keyframe);
           edges.push_back(e);
           ++summary.odometry_edges;
         }

@@ -34,6 +34,12 @@ MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
 
   YamlSection graph(root.child("pose_graph"), "pose_graph");
   PoseGraphConfig& g = config.graph;
+  graph.read_enum<OdometryCovariance>(
+      "odometry_covariance", g.odometry_covariance,
+      {{"distance", OdometryCovariance::Distance}, {"tracker", OdometryCovariance::Tracker}});
+  graph.read_range("tracker_covariance_scale", g.tracker_covariance_scale, 1e-3, 1e6);
+  graph.read_range("tracker_translation_sigma_min", g.tracker_translation_sigma_min, 1e-6, 100.0);
+  graph.read_range("tracker_rotation_sigma_min_deg", g.tracker_rotation_sigma_min_deg, 1e-6, 180.0);
   graph.read_range("odometry_translation_sigma_per_m", g.odometry_translation_sigma_per_m, 1e-6,
                    10.0);
   graph.read_range("odometry_rotation_sigma_deg_per_m", g.odometry_rotation_sigma_deg_per_m, 1e-6,
@@ -90,6 +96,13 @@ std::string mapper_config_to_yaml(const MapperConfig& c) {
   out << YAML::Key << "translation_sigma" << YAML::Value << c.verification.translation_sigma;
   out << YAML::EndMap;
   out << YAML::Key << "pose_graph" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "odometry_covariance" << YAML::Value
+      << (c.graph.odometry_covariance == OdometryCovariance::Tracker ? "tracker" : "distance");
+  out << YAML::Key << "tracker_covariance_scale" << YAML::Value << c.graph.tracker_covariance_scale;
+  out << YAML::Key << "tracker_translation_sigma_min" << YAML::Value
+      << c.graph.tracker_translation_sigma_min;
+  out << YAML::Key << "tracker_rotation_sigma_min_deg" << YAML::Value
+      << c.graph.tracker_rotation_sigma_min_deg;
   out << YAML::Key << "odometry_translation_sigma_per_m" << YAML::Value
       << c.graph.odometry_translation_sigma_per_m;
   out << YAML::Key << "odometry_rotation_sigma_deg_per_m" << YAML::Value

@@ -1,18 +1,22 @@
 #include "litamin2/mapping/pose_graph.hpp"
 
 #include <ceres/ceres.h>
+#include <Eigen/Cholesky>
 
 #include <memory>
+#include <stdexcept>
 
 namespace litamin2::mapping {
 namespace {
 
 /// Residual of one relative-pose measurement T_ab between poses (q_a, t_a) and (q_b, t_b), as
 /// in Ceres' pose_graph_3d example: the translation error in a's frame and twice the vector
-/// part of the rotation error quaternion, each divided by its standard deviation.
+/// part of the rotation error quaternion, whitened: multiplied by the square root of the
+/// information, L^-1 for the covariance L L^T (diag(1 / sigma) for independent components), so
+/// that its squared norm is the Mahalanobis distance r^T C^-1 r.
 struct RelativePoseError {
-  RelativePoseError(const Eigen::Isometry3d& measured, const Vector6d& sigma)
-      : q_ab(measured.rotation()), t_ab(measured.translation()), inv_sigma(sigma.cwiseInverse()) {}
+  RelativePoseError(const Eigen::Isometry3d& measured, const Matrix6d& sqrt_information)
+      : q_ab(measured.rotation()), t_ab(measured.translation()), sqrt_info(sqrt_information) {}
 
   template <class T>
   bool operator()(const T* qa_ptr, const T* ta_ptr, const T* qb_ptr, const T* tb_ptr,
@@ -23,17 +27,27 @@ struct RelativePoseError {
     const Eigen::Quaternion<T> q_ab_est = qa_inv * qb;
     const Eigen::Matrix<T, 3, 1> t_ab_est = qa_inv * (tb - ta);
     const Eigen::Quaternion<T> dq = q_ab.template cast<T>().conjugate() * q_ab_est;
-    Eigen::Map<Eigen::Matrix<T, 6, 1>> r(residual_ptr);
+    Eigen::Matrix<T, 6, 1> r;
     r.template head<3>() = t_ab_est - t_ab.template cast<T>();
     r.template tail<3>() = T(2.0) * dq.vec();
-    for (int i = 0; i < 6; ++i) r(i) *= T(inv_sigma(i));
+    Eigen::Map<Eigen::Matrix<T, 6, 1>> out(residual_ptr);
+    out = sqrt_info.template cast<T>() * r;
     return true;
   }
 
   Eigen::Quaterniond q_ab;
   Eigen::Vector3d t_ab;
-  Vector6d inv_sigma;
+  Matrix6d sqrt_info;
 };
+
+/// L^-1 of the edge's covariance L L^T (Cholesky), or diag(1 / sigma).
+Matrix6d sqrt_information(const PoseGraphEdge& e) {
+  if (!e.covariance) return e.sigma.cwiseInverse().asDiagonal();
+  const Eigen::LLT<Matrix6d> llt(*e.covariance);
+  if (llt.info() != Eigen::Success)
+    throw std::invalid_argument("pose graph: an edge's covariance is not positive definite");
+  return llt.matrixL().solve(Matrix6d::Identity());
+}
 
 /// A ground vehicle's sensor stays roughly level: the up axis of the frame the poses are in,
 /// seen from the node, is near the node's own up axis. Residual: the horizontal components of
@@ -73,7 +87,7 @@ PoseGraphResult optimize_pose_graph(std::vector<Eigen::Isometry3d>& poses,
   ceres::EigenQuaternionManifold quaternion_manifold;
   for (const PoseGraphEdge& e : edges) {
     auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 6, 4, 3, 4, 3>(
-        new RelativePoseError(e.relative, e.sigma));
+        new RelativePoseError(e.relative, sqrt_information(e)));
     ceres::LossFunction* loss = e.robust ? new ceres::CauchyLoss(config.loop_loss_scale) : nullptr;
     problem.AddResidualBlock(cost, loss, q[e.from].coeffs().data(), t[e.from].data(),
                              q[e.to].coeffs().data(), t[e.to].data());

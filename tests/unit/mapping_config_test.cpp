@@ -20,6 +20,8 @@ TEST(MappingConfig, EmittedYamlReadsBack) {
   config.place.proximity_radius = 7.5;
   config.verification.min_fitness = 0.7;
   config.graph.threads = 2;
+  config.graph.odometry_covariance = OdometryCovariance::Distance;
+  config.graph.tracker_covariance_scale = 4.0;
   const std::string yaml = mapper_config_to_yaml(config);
   EXPECT_EQ(mapper_config_to_yaml(mapper_config_from_yaml(YAML::Load(yaml))), yaml);
 }
@@ -39,4 +41,18 @@ TEST(MappingConfig, BadKeysAndValuesAreNamed) {
             std::string::npos);
   EXPECT_NE(message("pose_graph: {threads: many}").find("pose_graph.threads"), std::string::npos);
   EXPECT_NE(message("map_voxel_size: -1").find("map_voxel_size"), std::string::npos);
+  EXPECT_NE(message("pose_graph: {odometry_covariance: hessian}")
+                .find("pose_graph.odometry_covariance: 'hessian' is not one of: distance, tracker"),
+            std::string::npos);
+  EXPECT_NE(message("pose_graph: {tracker_covariance_scale: 0}")
+                .find("pose_graph.tracker_covariance_scale"),
+            std::string::npos);
+}
+
+TEST(MappingConfig, OdometryCovarianceSource) {
+  EXPECT_EQ(MapperConfig{}.graph.odometry_covariance, OdometryCovariance::Tracker);
+  const MapperConfig c = mapper_config_from_yaml(
+      YAML::Load("pose_graph: {odometry_covariance: distance, tracker_covariance_scale: 3}"));
+  EXPECT_EQ(c.graph.odometry_covariance, OdometryCovariance::Distance);
+  EXPECT_DOUBLE_EQ(c.graph.tracker_covariance_scale, 3.0);
 }

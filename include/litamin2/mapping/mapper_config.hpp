@@ -53,14 +53,40 @@ struct LoopVerificationConfig {
   double translation_sigma = 0.05;
 };
 
+/// Where the odometry edges' uncertainty comes from.
+enum class OdometryCovariance {
+  /// Standard deviations proportional to the distance between the keyframes (the
+  /// odometry_*_per_m keys), independent per axis.
+  Distance,
+  /// The tracker's covariance of the later keyframe, carried to the relative pose
+  /// (odometry_covariance.hpp), its standard deviations multiplied by tracker_covariance_scale,
+  /// plus independent noise of the tracker_*_sigma_min standard deviations (a floor). Edges whose
+  /// keyframe has no covariance (zero: the first frame, a failed registration) or that span a
+  /// missing keyframe fall back to Distance.
+  Tracker,
+};
+
 /// Pose graph optimisation (pose_graph.hpp).
 struct PoseGraphConfig {
-  /// Odometry edges' standard deviations per metre travelled between keyframes: translation
-  /// (metres per metre) ...
+  OdometryCovariance odometry_covariance = OdometryCovariance::Tracker;
+  /// Factor on the tracker's standard deviations (Tracker). The Hessian's covariance
+  /// 2 sigma^2 H^-1 is only as right as its assumptions (independent residuals of one variance):
+  /// the factor is calibrated so that the normalised errors e^T C^-1 e of consecutive
+  /// keyframes' relative poses average 6 (their dimension) on sequences with ground truth other
+  /// than the ones evaluated (sim 05 and 07, docs/accuracy.md). With the default icp+cov cost
+  /// the Cov term's residuals inflate sigma^2, so the covariance is ~5x too wide: 0.21; with the
+  /// ICP term alone it is ~1.55x too narrow: use 1.55.
+  double tracker_covariance_scale = 0.21;
+  /// Independent noise added to the scaled tracker covariance (Tracker): translation, metres ...
+  double tracker_translation_sigma_min = 0.001;
+  /// ... and rotation, degrees.
+  double tracker_rotation_sigma_min_deg = 0.001;
+  /// Odometry edges' standard deviations per metre travelled between keyframes (Distance):
+  /// translation (metres per metre) ...
   double odometry_translation_sigma_per_m = 0.01;
   /// ... and rotation (degrees per metre).
   double odometry_rotation_sigma_deg_per_m = 0.01;
-  /// Floors of those standard deviations for keyframes close together.
+  /// Floors of those standard deviations for keyframes close together (Distance).
   double odometry_translation_sigma_min = 0.01;
   double odometry_rotation_sigma_min_deg = 0.01;
   /// Scale of the robust (Cauchy) loss on loop edges, in standard deviations. A loop edge is

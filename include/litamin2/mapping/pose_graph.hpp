@@ -7,11 +7,13 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <optional>
 #include <vector>
 
 namespace litamin2::mapping {
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
 struct PoseGraphEdge {
   /// Node indices: the edge measures the pose of `to` in the frame of `from`.
@@ -21,6 +23,10 @@ struct PoseGraphEdge {
   /// Standard deviations of the translation (x, y, z, metres) then rotation (about x, y, z,
   /// radians) of the measurement, in `from`'s frame.
   Vector6d sigma = Vector6d::Ones();
+  /// If set, the full covariance of the measurement in the residual's coordinates (translation
+  /// difference in `from`'s frame, then the rotation error on the right of the measurement;
+  /// mapping/odometry_covariance.hpp), used instead of `sigma`. Must be positive definite.
+  std::optional<Matrix6d> covariance;
   /// Robust loss (loop edges) or plain least squares (odometry edges).
   bool robust = false;
 };
