@@ -9,7 +9,9 @@
 # frame; everything is shut down with SIGTERM. Output in ${OUT:-out/demo}.
 # Env: FRAMES (default 387 per vehicle: the whole built-in loop), DOMAIN (DDS domain, default 42), RATE (Hz, default 10),
 # MERGE_BOUND (metres, default 1.0: largest allowed error of a merged vehicle's keyframes in the
-# first vehicle's frame), BUILD_DIR, DEMO_SKIP_BUILD.
+# first vehicle's frame), MAP_ODOM_BOUND (metres, default 1.0: the same for every pose the
+# aggregator published live on rt/<vehicle>/map_odom in the map frame), BUILD_DIR,
+# DEMO_SKIP_BUILD.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 if [ -z "${DEMO_SKIP_BUILD:-}" ]; then  # the fleet ctest runs it on an existing build
@@ -19,6 +21,7 @@ fi
 build="${BUILD_DIR:-$root/build}"
 bin="$build/tools"
 probe="$build/tests/integration/daemon_probe"
+map_odom_probe="$build/tests/integration/map_odom_probe"
 out=${OUT:-$root/out/demo}
 frames=${FRAMES:-387}
 domain=${DOMAIN:-42}
@@ -57,8 +60,11 @@ YAML
 daemon_pid=""
 probe_pid=""
 aggregator_pid=""
+map_odom_pid=""
 cleanup() {
-  for pid in $probe_pid $daemon_pid $aggregator_pid; do kill -9 "$pid" 2>/dev/null || true; done
+  for pid in $probe_pid $daemon_pid $aggregator_pid $map_odom_pid; do
+    kill -9 "$pid" 2>/dev/null || true
+  done
 }
 trap cleanup EXIT
 
@@ -66,6 +72,11 @@ echo "== starting litamin2-aggregator (store $out/aggregator.db)"
 rm -f aggregator.db aggregator.db-wal aggregator.db-shm
 "$bin/aggregator/litamin2-aggregator" --config aggregator.yaml > aggregator.log 2>&1 &
 aggregator_pid=$!
+echo "== recording the aggregator's map-frame odometry (rt/<vehicle>/map_odom)"
+rm -f map_odom_*.txt
+"$map_odom_probe" --domain "$domain" --profile loopback --out map_odom_ \
+  $(for s in "${streams[@]}"; do echo --stream "$s"; done) > map_odom_probe.log 2>&1 &
+map_odom_pid=$!
 
 echo "== starting litamin2d (domain $domain, loopback profile) and an odometry subscriber"
 "$bin/litamin2d/litamin2d" --config litamin2d.yaml > daemon.log 2>&1 &
@@ -111,6 +122,9 @@ kill -TERM "$aggregator_pid"
 aggregator_rc=0
 wait "$aggregator_pid" || aggregator_rc=$?
 aggregator_pid=""
+kill -TERM "$map_odom_pid"
+wait "$map_odom_pid" || true
+map_odom_pid=""
 
 echo "== export: global map and trajectories"
 rm -rf trajectories report
@@ -141,6 +155,11 @@ echo "== per-stream drift and ATE before (litamin2d odometry) and after loop clo
 report_rc=0
 python3 "$root/scripts/lib/fleet_report.py" "$bin/eval/litamin2-eval" fleet received_ trajectories \
   report "${MERGE_BOUND:-1.0}" || report_rc=$?
+echo
+echo "== each vehicle's current pose in the map frame, as published live (rt/<vehicle>/map_odom)"
+map_odom_rc=0
+python3 "$root/scripts/lib/map_odom_report.py" fleet map_odom_ "${MAP_ODOM_BOUND:-1.0}" \
+  || map_odom_rc=$?
 for s in "${streams[@]}"; do
   "$bin/eval/litamin2-eval" --gt "report/${s}_gt_map_keyframes.txt" \
     --est "report/${s}_slam_keyframes.txt" --plot "trajectory_$s.png" > /dev/null
@@ -148,6 +167,6 @@ done
 echo "  map: $out/map.ply; trajectory plots: $out/trajectory_*.png; trajectories: $out/trajectories"
 echo "  logs and poses: $out (daemon.log, aggregator.log, probe.log, received_*, offline_*, report/)"
 [ "$probe_rc" -eq 0 ] && [ "$daemon_rc" -eq 0 ] && [ "$aggregator_rc" -eq 0 ] && [ "$stored" -ge "$expected" ] \
-  && [ "$report_rc" -eq 0 ] ||
-  { echo "demo FAILED (probe $probe_rc, daemon $daemon_rc, aggregator $aggregator_rc, stored $stored of $expected, report $report_rc)"; exit 1; }
+  && [ "$report_rc" -eq 0 ] && [ "$map_odom_rc" -eq 0 ] ||
+  { echo "demo FAILED (probe $probe_rc, daemon $daemon_rc, aggregator $aggregator_rc, stored $stored of $expected, report $report_rc, map_odom $map_odom_rc)"; exit 1; }
 echo "demo OK"

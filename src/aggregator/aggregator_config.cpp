@@ -17,6 +17,18 @@ void check_topic(const std::string& topic, const std::string& path) {
       throw ConfigError(path + ": '" + topic + "' is not a valid topic name");
 }
 
+/// A topic pattern with exactly one '*' standing for the stream id (dds::TopicPattern).
+void check_pattern(const std::string& pattern, const std::string& path) {
+  int stars = 0;
+  for (char c : pattern) {
+    if (static_cast<unsigned char>(c) <= ' ' || c == '?')
+      throw ConfigError(path + ": '" + pattern + "' is not a valid topic pattern");
+    stars += c == '*';
+  }
+  if (stars != 1)
+    throw ConfigError(path + ": '" + pattern + "' must contain exactly one '*' (the stream id)");
+}
+
 mapping::MapperConfig read_mapper(const YAML::Node& node) {
   try {
     return mapping::mapper_config_from_yaml(node ? node : YAML::Node(YAML::NodeType::Map));
@@ -41,6 +53,8 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
     topics.read("keyframe_poses", config.topics.keyframe_poses);
     topics.read("map_summary", config.topics.map_summary);
     topics.read("status", config.topics.status);
+    topics.read("odometry", config.topics.odometry);
+    topics.read("map_odometry", config.topics.map_odometry);
     topics.reject_unknown();
     check_topic(config.topics.map_patches, "topics.map_patches");
     check_topic(config.topics.keyframe_poses, "topics.keyframe_poses");
@@ -49,6 +63,12 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
     const std::set<std::string> distinct = {config.topics.map_patches, config.topics.keyframe_poses,
                                             config.topics.map_summary, config.topics.status};
     if (distinct.size() != 4) throw ConfigError("topics: the four topics must be different");
+    if (!config.topics.odometry.empty()) {
+      check_pattern(config.topics.odometry, "topics.odometry");
+      check_pattern(config.topics.map_odometry, "topics.map_odometry");
+      if (config.topics.odometry == config.topics.map_odometry)
+        throw ConfigError("topics: odometry and map_odometry must be different");
+    }
   }
 
   {

@@ -12,6 +12,10 @@ if(TARGET litamin2-aggregator)
   target_include_directories(aggregator_probe PRIVATE ${CMAKE_SOURCE_DIR}/tests)
   target_link_libraries(aggregator_probe PRIVATE litamin2_dds litamin2_core litamin2_io
     litamin2_mapping CLI11::CLI11)
+  # Records the aggregator's map-frame odometry (the fleet chain test, scripts/demo.sh).
+  add_executable(map_odom_probe ${CMAKE_CURRENT_LIST_DIR}/map_odom_probe/main.cpp)
+  target_include_directories(map_odom_probe PRIVATE ${CMAKE_SOURCE_DIR}/tests)
+  target_link_libraries(map_odom_probe PRIVATE litamin2_dds CLI11::CLI11)
 
   add_test(NAME integration_aggregator_errors
     COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/aggregator_errors.sh ${CMAKE_BINARY_DIR}

@@ -85,3 +85,18 @@ TEST(AggregatorConfig, FileErrorsNameTheFile) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/agg.yaml: cannot open"), std::string::npos);
   }
 }
+
+TEST(AggregatorConfig, OdometryTopicPatterns) {
+  const AggregatorConfig d = aggregator_config_from_yaml(YAML::Node());
+  EXPECT_EQ(d.topics.odometry, "rt/*/odom");
+  EXPECT_EQ(d.topics.map_odometry, "rt/*/map_odom");
+  const AggregatorConfig c = aggregator_config_from_yaml(
+      YAML::Load("topics: {odometry: 'rt/fleet/*/odom', map_odometry: 'rt/map/*/pose'}"));
+  EXPECT_EQ(c.topics.odometry, "rt/fleet/*/odom");
+  EXPECT_EQ(c.topics.map_odometry, "rt/map/*/pose");
+  EXPECT_TRUE(
+      aggregator_config_from_yaml(YAML::Load("topics: {odometry: ''}")).topics.odometry.empty());
+  expect_error("topics: {odometry: 'rt/odom'}", "topics.odometry");
+  expect_error("topics: {map_odometry: 'rt/*/*/pose'}", "topics.map_odometry");
+  expect_error("topics: {odometry: 'rt/*/x', map_odometry: 'rt/*/x'}", "must be different");
+}

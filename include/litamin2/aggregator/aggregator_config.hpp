@@ -23,6 +23,13 @@ struct TopicsConfig {
   std::string map_summary = "rt/litamin2/map_summary";
   /// Output: the aggregator's status (diagnostic_msgs/DiagnosticArray).
   std::string status = "rt/litamin2/aggregator/status";
+  /// Input: each stream's odometry (nav_msgs/Odometry), a pattern whose one '*' stands for the
+  /// stream id; read for every stream seen in the map patches. Empty: no odometry is read and
+  /// no map-frame odometry published.
+  std::string odometry = "rt/*/odom";
+  /// Output: each stream's current pose in the map frame (nav_msgs/Odometry, frame_id "map",
+  /// child_frame_id as in its odometry), a pattern like `odometry`.
+  std::string map_odometry = "rt/*/map_odom";
 };
 
 struct StoreConfig {

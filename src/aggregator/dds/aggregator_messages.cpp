@@ -54,11 +54,10 @@ litamin2::msg::MapSummary to_map_summary_msg(const MapSummary& s, double stamp_s
   return msg;
 }
 
-diagnostic_msgs::msg::DiagnosticArray make_aggregator_status(const WorkerStatus& w,
-                                                             const IngestCounters& in,
-                                                             std::uint8_t level,
-                                                             const std::string& message,
-                                                             double stamp_seconds) {
+diagnostic_msgs::msg::DiagnosticArray make_aggregator_status(
+    const WorkerStatus& w, const IngestCounters& in,
+    const std::map<std::string, OdometryStreamStatus>& odometry, std::uint8_t level,
+    const std::string& message, double stamp_seconds) {
   diagnostic_msgs::msg::DiagnosticArray array;
   array.header().stamp(dds::to_time(stamp_seconds));
   array.header().frame_id("");
@@ -98,6 +97,19 @@ diagnostic_msgs::msg::DiagnosticArray make_aggregator_status(const WorkerStatus&
     s.values().push_back(key_value("keyframes", std::to_string(counts.keyframes)));
     s.values().push_back(key_value("max_keyframe_id", std::to_string(counts.max_id)));
     s.values().push_back(key_value("missing", std::to_string(missing)));
+    const auto o = odometry.find(stream);
+    if (o != odometry.end()) {
+      const OdometryStreamStatus& c = o->second;
+      s.values().push_back(key_value("odometry_received", std::to_string(c.received)));
+      s.values().push_back(key_value("odometry_rate_hz", fixed_number(c.rate_hz, 2)));
+      s.values().push_back(key_value(
+          "odometry_last_seen_s", c.last_seen_s < 0.0 ? "never" : fixed_number(c.last_seen_s, 3)));
+      s.values().push_back(key_value("odometry_rejected", std::to_string(c.rejected)));
+      s.values().push_back(
+          key_value("odometry_before_keyframe", std::to_string(c.before_keyframe)));
+      s.values().push_back(key_value("map_odometry_published", std::to_string(c.published)));
+      s.values().push_back(key_value("map_odometry_frame", c.frame_id));
+    }
     array.status().push_back(std::move(s));
   }
   return array;

@@ -4,9 +4,11 @@
 #include "litamin2/aggregator/dds/aggregator_messages.hpp"
 #include "litamin2/daemon/dds/participant_setup.hpp"
 #include "litamin2/dds/qos.hpp"
+#include "litamin2/dds/topic_names.hpp"
 #include "litamin2/msg/KeyframePosesPubSubTypes.h"
 #include "litamin2/msg/MapPatchPubSubTypes.h"
 #include "litamin2/msg/MapSummaryPubSubTypes.h"
+#include "nav_msgs/msg/OdometryPubSubTypes.h"
 
 #include <spdlog/spdlog.h>
 #include <fastdds/dds/publisher/DataWriter.hpp>
@@ -44,8 +46,10 @@ fdds::DataWriterQos latest_per_instance_qos() {
 
 class AggregatorNode::Sink : public AggregatorSink {
  public:
-  Sink(fdds::DataWriter* poses, fdds::DataWriter* summary) : poses_(poses), summary_(summary) {}
+  Sink(fdds::DataWriter* poses, fdds::DataWriter* summary, MapOdometryRelay& relay)
+      : poses_(poses), summary_(summary), relay_(relay) {}
   void publish_poses(const StreamPoses& poses) override {
+    relay_.set_correction(poses.stream, map_correction(poses));
     litamin2::msg::KeyframePoses msg = to_keyframe_poses_msg(poses);
     if (!poses_->write(&msg)) spdlog::warn("cannot publish the poses of stream {}", poses.stream);
   }
@@ -57,6 +61,7 @@ class AggregatorNode::Sink : public AggregatorSink {
  private:
   fdds::DataWriter* poses_;
   fdds::DataWriter* summary_;
+  MapOdometryRelay& relay_;
 };
 
 AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Progress& progress)
@@ -82,6 +87,8 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
       daemon::register_type(participant_.get(), new litamin2::msg::MapSummaryPubSubType());
   status_type_ = daemon::register_type(participant_.get(),
                                        new diagnostic_msgs::msg::DiagnosticArrayPubSubType());
+  odometry_type_ =
+      daemon::register_type(participant_.get(), new nav_msgs::msg::OdometryPubSubType());
 
   subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
   publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
@@ -101,9 +108,11 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
                                                  dds::status_writer_qos());
   if (!poses_writer || !summary_writer || !status_writer_)
     throw std::runtime_error("cannot create output writers");
-  sink_ = std::make_unique<Sink>(poses_writer, summary_writer);
+  sink_ = std::make_unique<Sink>(poses_writer, summary_writer, relay_);
   worker_ = std::make_unique<MappingWorker>(*core_, queue_, *sink_, config_);
+  relay_.start();
   worker_->start();
+  subscribe_odometry(worker_->status());
 
   reader_ = subscriber_->create_datareader(patches, dds::map_patches_reader_qos(), &listener_,
                                            fdds::StatusMask::data_available()
@@ -123,8 +132,48 @@ AggregatorNode::~AggregatorNode() {
   participant_.reset();
 }
 
+void AggregatorNode::subscribe_odometry(const WorkerStatus& status) {
+  if (config_.topics.odometry.empty()) return;
+  const auto in = dds::TopicPattern::parse(config_.topics.odometry);
+  const auto out = dds::TopicPattern::parse(config_.topics.map_odometry);
+  if (!in || !out) return;  // rejected by the config already
+  for (const auto& [stream, counts] : status.streams) {
+    if (odometry_.count(stream)) continue;
+    OdometryStream& o = odometry_[stream];
+    const std::string in_topic = in->topic_for(stream), out_topic = out->topic_for(stream);
+    fdds::Topic* in_t = participant_->create_topic(in_topic, odometry_type_.get_type_name(),
+                                                   fdds::TOPIC_QOS_DEFAULT);
+    fdds::Topic* out_t = participant_->create_topic(out_topic, odometry_type_.get_type_name(),
+                                                    fdds::TOPIC_QOS_DEFAULT);
+    fdds::DataWriter* writer =
+        out_t ? publisher_->create_datawriter(out_t, dds::odom_writer_qos()) : nullptr;
+    if (!in_t || !writer) {
+      spdlog::warn("stream {}: cannot create {} / {}: no map-frame odometry", stream, in_topic,
+                   out_topic);
+      continue;
+    }
+    relay_.add_stream(stream, [writer, stream](const nav_msgs::msg::Odometry& msg) {
+      nav_msgs::msg::Odometry copy = msg;
+      if (!writer->write(&copy))
+        spdlog::warn("cannot publish the map-frame odometry of {}", stream);
+    });
+    o.listener = std::make_unique<OdometryListener>(stream, relay_);
+    o.reader = subscriber_->create_datareader(in_t, dds::odom_reader_qos(), o.listener.get(),
+                                              fdds::StatusMask::data_available());
+    if (!o.reader) {
+      spdlog::warn("stream {}: cannot read {}", stream, in_topic);
+      continue;
+    }
+    spdlog::info("stream {}: reading {}, publishing its map-frame pose on {}", stream, in_topic,
+                 out_topic);
+  }
+}
+
 void AggregatorNode::poll(Clock::time_point now) {
-  if (stopped_ || now < next_status_) return;
+  if (stopped_) return;
+  const WorkerStatus w = worker_->status();
+  if (w.streams.size() > odometry_.size()) subscribe_odometry(w);
+  if (now < next_status_) return;
   publish_status(now);
   next_status_ = now + std::chrono::duration_cast<Clock::duration>(
                            std::chrono::duration<double>(config_.publish.status_period_s));
@@ -178,7 +227,7 @@ void AggregatorNode::publish_status(Clock::time_point now) {
   }
   reported_rejected_ = in.rejected;
   reported_lost_ = in.samples_lost;
-  auto msg = make_aggregator_status(w, in, level, message, daemon::wall_seconds());
+  auto msg = make_aggregator_status(w, in, relay_.status(), level, message, daemon::wall_seconds());
   status_writer_->write(&msg);
 }
 
@@ -191,8 +240,15 @@ void AggregatorNode::shutdown() {
     subscriber_->delete_datareader(reader_);
     reader_ = nullptr;
   }
+  for (auto& [stream, o] : odometry_) {
+    if (!o.reader) continue;
+    o.reader->set_listener(nullptr);
+    subscriber_->delete_datareader(o.reader);
+    o.reader = nullptr;
+  }
   const std::size_t queued = queue_.size();
   worker_->stop();
+  relay_.stop();
   publish_status(Clock::now());
   spdlog::info("shut down: {} queued patch(es) committed; {}", queued, summary());
   const WorkerStatus w = worker_->status();

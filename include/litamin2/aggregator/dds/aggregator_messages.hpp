@@ -5,11 +5,13 @@
 
 #include "diagnostic_msgs/msg/DiagnosticArray.h"
 #include "litamin2/aggregator/aggregator_outputs.hpp"
+#include "litamin2/aggregator/dds/map_odometry_relay.hpp"
 #include "litamin2/aggregator/mapping_worker.hpp"
 #include "litamin2/msg/KeyframePoses.h"
 #include "litamin2/msg/MapSummary.h"
 
 #include <cstdint>
+#include <map>
 #include <string>
 
 namespace litamin2::aggregator {
@@ -33,11 +35,11 @@ struct IngestCounters {
 };
 
 /// level: 0 OK, 1 WARN (patches rejected or lost since the last status), 2 ERROR (store failed
-/// or mapping stalled), with `message`.
-diagnostic_msgs::msg::DiagnosticArray make_aggregator_status(const WorkerStatus& worker,
-                                                             const IngestCounters& ingest,
-                                                             std::uint8_t level,
-                                                             const std::string& message,
-                                                             double stamp_seconds);
+/// or mapping stalled), with `message`. Each stream's entry also reports its odometry
+/// (`odometry`: received, rate, seconds since the last message, map-frame poses published).
+diagnostic_msgs::msg::DiagnosticArray make_aggregator_status(
+    const WorkerStatus& worker, const IngestCounters& ingest,
+    const std::map<std::string, OdometryStreamStatus>& odometry, std::uint8_t level,
+    const std::string& message, double stamp_seconds);
 
 }  // namespace litamin2::aggregator

@@ -3,11 +3,16 @@
 /// transient-local, keep-all) whose listener only converts and enqueues; writers of the
 /// corrected keyframe poses (one instance per stream, reliable, transient-local), of the map
 /// summary (reliable, transient-local) and of the status (DiagnosticArray); the mapping thread
-/// in between. The store is opened (and the mapper rebuilt from it) before DDS starts, so a
+/// in between. For every stream seen in the patches (or recovered from the store), a reader of
+/// its odometry (reliable, keep-last, as litamin2d writes it) and a writer of its current pose
+/// in the map frame (map_odometry.hpp), created by the main loop; a MapOdometryRelay between
+/// them. The store is opened (and the mapper rebuilt from it) before DDS starts, so a
 /// store that cannot be opened fails the start with nothing published.
 
 #include "litamin2/aggregator/aggregator_config.hpp"
 #include "litamin2/aggregator/aggregator_core.hpp"
+#include "litamin2/aggregator/dds/map_odometry_relay.hpp"
+#include "litamin2/aggregator/dds/odometry_listener.hpp"
 #include "litamin2/aggregator/dds/patch_listener.hpp"
 #include "litamin2/aggregator/mapping_worker.hpp"
 #include "litamin2/aggregator/patch_queue.hpp"
@@ -16,6 +21,7 @@
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
 #include <chrono>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -40,7 +46,7 @@ class AggregatorNode {
   AggregatorNode(const AggregatorNode&) = delete;
   AggregatorNode& operator=(const AggregatorNode&) = delete;
 
-  /// Main-loop work: the status when due.
+  /// Main-loop work: odometry readers for new streams, the status when due.
   void poll(Clock::time_point now = Clock::now());
   /// The mapping thread is not stalled and the store works.
   bool healthy(Clock::time_point now = Clock::now()) const;
@@ -56,17 +62,27 @@ class AggregatorNode {
  private:
   class Sink;
   void publish_status(Clock::time_point now);
+  /// Odometry reader and map-frame writer for streams that have none yet.
+  void subscribe_odometry(const WorkerStatus& status);
+
+  struct OdometryStream {
+    std::unique_ptr<OdometryListener> listener;
+    eprosima::fastdds::dds::DataReader* reader = nullptr;
+  };
 
   AggregatorConfig config_;
   std::unique_ptr<AggregatorCore> core_;
   PatchQueue queue_;
   PatchListener listener_;
   dds::ParticipantPtr participant_;
-  eprosima::fastdds::dds::TypeSupport patch_type_, poses_type_, summary_type_, status_type_;
+  eprosima::fastdds::dds::TypeSupport patch_type_, poses_type_, summary_type_, status_type_,
+      odometry_type_;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
   eprosima::fastdds::dds::DataWriter* status_writer_ = nullptr;
+  MapOdometryRelay relay_;
+  std::map<std::string, OdometryStream> odometry_;
   std::unique_ptr<Sink> sink_;
   std::unique_ptr<MappingWorker> worker_;
   Clock::time_point next_status_{};
