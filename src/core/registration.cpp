@@ -23,6 +23,12 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
   const Eigen::Vector3d y = pose * source.mean;
   const Eigen::Matrix3d rotated_cov = rotation * source.cov * rotation.transpose();
 
+  // Round combined distributions (not in the paper, RegistrationConfig::max_isotropy): their
+  // mean depends on the viewpoint, which Eq. 3's normalised precision weights in every direction.
+  if (config.max_isotropy < 1.0 &&
+      combined_isotropy(target.cov, rotated_cov, config.lambda) > config.max_isotropy) {
+    return;
+  }
   // ICP term, Eq. 3, with its robust weight, Eq. 5.
   const Eigen::Matrix3d precision = combined_precision(target.cov, rotated_cov, config.lambda);
   const IcpTerm icp = evaluate_icp_term(target.mean, y, precision);
@@ -109,8 +115,15 @@ RegistrationResult register_distributions(const std::vector<Distribution>& sourc
   RegistrationResult result;
   result.pose = initial;
   NearestCache cache(search, map.distributions(), source.size());
+  // Where the isotropy gate leaves too few correspondences (a scan of little flat structure),
+  // the scan is registered with every correspondence instead, as in the paper.
+  RegistrationConfig active = config;
   for (int iteration = 0; iteration < config.max_iterations; ++iteration) {
-    const CostEvaluation eval = evaluate_cost(source, map, search, result.pose, config, &cache);
+    CostEvaluation eval = evaluate_cost(source, map, search, result.pose, active, &cache);
+    if (eval.correspondences < config.min_correspondences && active.max_isotropy < 1.0) {
+      active.max_isotropy = 1.0;
+      eval = evaluate_cost(source, map, search, result.pose, active, &cache);
+    }
     result.iterations = iteration + 1;
     result.cost = eval.cost;
     result.correspondences = eval.correspondences;

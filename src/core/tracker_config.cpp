@@ -68,6 +68,7 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node) {
   registration.read("sigma_icp", r.sigma_icp);
   registration.read("sigma_cov", r.sigma_cov);
   registration.read("cov_min_points", r.cov_min_points);
+  registration.read("max_isotropy", r.max_isotropy);
   registration.read("lambda", r.lambda);
   registration.read_enum("cov_energy", r.cov_energy, kCovEnergies);
   registration.read_enum("cov_hessian", r.cov_hessian, kCovHessians);
@@ -131,6 +132,8 @@ void validate(const TrackerConfig& c) {
   require(r.sigma_icp > 0.0, "registration.sigma_icp", r.sigma_icp, "positive");
   require(r.sigma_cov > 0.0, "registration.sigma_cov", r.sigma_cov, "positive");
   require(r.cov_min_points >= 0, "registration.cov_min_points", r.cov_min_points, "at least 0");
+  require(r.max_isotropy > 0.0 && r.max_isotropy <= 1.0, "registration.max_isotropy",
+          r.max_isotropy, "in (0, 1]; 1 keeps every correspondence");
   require(r.lambda >= 0.0, "registration.lambda", r.lambda, "at least 0");
   require(r.max_correspondence_distance >= 0.0, "registration.max_correspondence_distance",
           r.max_correspondence_distance, "at least 0; 0 means one voxel");
@@ -182,6 +185,7 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "sigma_icp" << YAML::Value << r.sigma_icp;
   out << YAML::Key << "sigma_cov" << YAML::Value << r.sigma_cov;
   out << YAML::Key << "cov_min_points" << YAML::Value << r.cov_min_points;
+  out << YAML::Key << "max_isotropy" << YAML::Value << r.max_isotropy;
   out << YAML::Key << "lambda" << YAML::Value << r.lambda;
   out << YAML::Key << "cov_energy" << YAML::Value << enum_name(r.cov_energy, kCovEnergies);
   out << YAML::Key << "cov_hessian" << YAML::Value << enum_name(r.cov_hessian, kCovHessians);

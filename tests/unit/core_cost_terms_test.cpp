@@ -173,5 +173,16 @@ TEST(Regularizer, FlatCovarianceGetsBoundedInverse) {
   EXPECT_TRUE((cov * inv).isApprox(Eigen::Matrix3d::Identity(), 1e-9));
 }
 
+TEST(IcpTerm, CombinedIsotropyIsSmallForPlanesAndOneForSpheres) {
+  const Eigen::Matrix3d plane = Eigen::Vector3d(1.0, 1.0, 1e-4).asDiagonal();
+  const Eigen::Matrix3d line = Eigen::Vector3d(1e-4, 1.0, 1e-4).asDiagonal();
+  const Eigen::Matrix3d sphere = Eigen::Matrix3d::Identity();
+  EXPECT_NEAR(combined_isotropy(plane, plane, 0.0), 1e-4, 1e-12);
+  EXPECT_NEAR(combined_isotropy(line, line, 0.0), 1e-4, 1e-12);
+  EXPECT_NEAR(combined_isotropy(sphere, sphere, 1e-6), 1.0, 1e-12);
+  // A plane matched to a round distribution is round enough to be gated.
+  EXPECT_GT(combined_isotropy(sphere, plane, 0.0), 0.4);
+}
+
 }  // namespace
 }  // namespace litamin2

@@ -2,6 +2,7 @@
 // results do not depend on the thread count.
 
 #include "litamin2/core/correspondence_search.hpp"
+#include "litamin2/core/icp_term.hpp"
 #include "litamin2/core/scan_registration.hpp"
 #include "litamin2/core/so3.hpp"
 #include "litamin2/core/voxel_map.hpp"
@@ -141,6 +142,63 @@ TEST(Registration, CovMinPointsGatesOnlyTheCovTerm) {
   EXPECT_GT(all.cost, icp.cost);
   EXPECT_GT((all.gradient - icp.gradient).head<3>().norm(), 0.0);
   EXPECT_EQ(all.gradient.tail<3>(), icp.gradient.tail<3>());  // the Cov term is free of t
+}
+
+TEST(Registration, MaxIsotropyDropsOnlyRoundCorrespondences) {
+  VoxelizerConfig voxels;
+  VoxelMap map(voxels, VoxelMapConfig{});
+  map.insert(testing::synthetic_scene(1), Eigen::Isometry3d::Identity());
+  Voxelizer voxelizer(voxels);
+  const auto search = make_correspondence_search(CorrespondenceMethod::Voxel27, map);
+  const Eigen::Isometry3d pose =
+      make_pose(Eigen::Vector3d(0.5, -0.3, 2), Eigen::Vector3d(0.2, 0.1, 0));
+  const std::vector<Distribution> source = voxelizer.voxelize(testing::synthetic_scene(2), pose);
+  RegistrationConfig config;
+  const double limit = 0.05;
+  // The correspondences the gate must keep: combined covariance flatter than the limit.
+  int flat = 0;
+  int round = 0;
+  const double max_distance_sq = voxels.voxel_size * voxels.voxel_size;
+  for (const Distribution& d : source) {
+    const int match = search->nearest(pose * d.mean, max_distance_sq);
+    if (match < 0) continue;
+    const Eigen::Matrix3d rotated = pose.linear() * d.cov * pose.linear().transpose();
+    const double isotropy =
+        combined_isotropy(map.distributions()[match].cov, rotated, config.lambda);
+    (isotropy <= limit ? flat : round) += 1;
+  }
+  ASSERT_GT(flat, 0);
+  ASSERT_GT(round, 0);
+  for (CostMode mode : {CostMode::Icp, CostMode::IcpCov}) {
+    config.mode = mode;
+    config.max_isotropy = 1.0;  // every correspondence (the paper)
+    const CostEvaluation all = evaluate_cost(source, map, *search, pose, config);
+    config.max_isotropy = limit;
+    const CostEvaluation gated = evaluate_cost(source, map, *search, pose, config);
+    EXPECT_EQ(all.correspondences, flat + round);
+    EXPECT_EQ(gated.correspondences, flat);
+    EXPECT_LT(gated.cost, all.cost);
+  }
+}
+
+TEST(Registration, IsotropyGateFallsBackToEveryCorrespondence) {
+  // No distribution is flat enough for a limit of 1e-12: the scan is registered with all
+  // correspondences, exactly as with the gate off, instead of failing.
+  const Eigen::Isometry3d truth =
+      make_pose(Eigen::Vector3d(0.5, -0.3, 2), Eigen::Vector3d(0.2, 0.1, 0));
+  const PointCloud target = testing::synthetic_scene(1);
+  const PointCloud source = testing::transformed(testing::synthetic_scene(2), truth.inverse());
+  RegistrationConfig config;
+  config.max_isotropy = 1.0;
+  const RegistrationResult all =
+      testing::register_clouds(target, source, Eigen::Isometry3d::Identity(), config);
+  config.max_isotropy = 1e-12;
+  const RegistrationResult none =
+      testing::register_clouds(target, source, Eigen::Isometry3d::Identity(), config);
+  ASSERT_TRUE(all.valid);
+  ASSERT_TRUE(none.valid);
+  EXPECT_TRUE(none.pose.isApprox(all.pose, 1e-12));
+  EXPECT_EQ(none.correspondences, all.correspondences);
 }
 
 TEST(Registration, FailsCleanlyWithoutOverlap) {

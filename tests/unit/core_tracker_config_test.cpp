@@ -41,6 +41,7 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   config.registration.correspondence = CorrespondenceMethod::Voxel27;
   config.keyframe.angle_deg = 7.25;
   config.map.radius = 80.0;
+  config.registration.max_isotropy = 0.125;
   const TrackerConfig back = tracker_config_from_yaml(YAML::Load(tracker_config_to_yaml(config)));
   EXPECT_EQ(tracker_config_to_yaml(back), tracker_config_to_yaml(config));
   EXPECT_EQ(back.voxelizer.voxel_size, 2.5);
@@ -62,6 +63,10 @@ TEST(TrackerConfigYaml, ErrorsNameKeyAndValue) {
             std::string::npos);
   EXPECT_NE(error_of("registration: {correspondence: voxel27, max_correspondence_distance: 5}")
                 .find("registration.max_correspondence_distance"),
+            std::string::npos);
+  EXPECT_NE(error_of("registration: {max_isotropy: 0}").find("registration.max_isotropy: 0"),
+            std::string::npos);
+  EXPECT_NE(error_of("registration: {max_isotropy: 1.5}").find("registration.max_isotropy: 1.5"),
             std::string::npos);
   EXPECT_NE(error_of("registration: {max_iterations: 0}").find("registration.max_iterations: 0"),
             std::string::npos);

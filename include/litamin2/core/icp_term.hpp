@@ -9,6 +9,7 @@
 /// [ [y]x  -I ] (y = R p + t) the gradient is 2 J^T C r and the Hessian 2 J^T C J.
 
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 
 namespace litamin2 {
 
@@ -18,6 +19,16 @@ inline Eigen::Matrix3d combined_precision(const Eigen::Matrix3d& cq,
   const Eigen::Matrix3d combined = cq + rotated_cp + lambda * Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d inverse = combined.inverse();
   return inverse / inverse.norm();
+}
+
+/// Smallest over largest eigenvalue of the combined covariance Cq + R Cp R^T + lambda I of
+/// Eq. 3: near 0 for a plane or a line, near 1 for a round distribution.
+inline double combined_isotropy(const Eigen::Matrix3d& cq, const Eigen::Matrix3d& rotated_cp,
+                                double lambda) {
+  const Eigen::Matrix3d combined = cq + rotated_cp + lambda * Eigen::Matrix3d::Identity();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(combined, Eigen::EigenvaluesOnly);
+  return eig.eigenvalues()(0) / eig.eigenvalues()(2);
 }
 
 struct IcpTerm {
