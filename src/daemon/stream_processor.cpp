@@ -1,13 +1,8 @@
 #include "litamin2/daemon/stream_processor.hpp"
 
+#include "litamin2/core/so3.hpp"
+
 namespace litamin2::daemon {
-namespace {
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return m;
-}
-}  // namespace
 
 Eigen::Isometry3d base_pose(const Eigen::Isometry3d& sensor_pose,
                             const Eigen::Isometry3d& extrinsic) {

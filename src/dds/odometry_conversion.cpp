@@ -1,17 +1,12 @@
 #include "litamin2/dds/odometry_conversion.hpp"
 
+#include "litamin2/core/so3.hpp"
 #include "litamin2/dds/pose_conversion.hpp"
 #include "litamin2/dds/time_conversion.hpp"
 
 namespace litamin2::dds {
 
 namespace {
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
 
 /// J mapping the left update (phi, tau) to (dt, dphi) of the ROS order (see the header).
 Matrix6d left_to_ros_jacobian(const Eigen::Isometry3d& pose) {

@@ -1,15 +1,8 @@
 #include "litamin2/mapping/odometry_covariance.hpp"
 
+#include "litamin2/core/so3.hpp"
+
 namespace litamin2::mapping {
-namespace {
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return m;
-}
-
-}  // namespace
 
 Matrix6d relative_pose_covariance(const Eigen::Isometry3d& pose_a, const Eigen::Isometry3d& pose_b,
                                   const Matrix6d& left_covariance_b) {

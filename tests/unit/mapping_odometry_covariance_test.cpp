@@ -7,6 +7,8 @@
 #include "litamin2/mapping/odometry_covariance.hpp"
 #include "litamin2/mapping/pose_graph.hpp"
 
+#include "support/poses.hpp"
+
 #include <gtest/gtest.h>
 
 using namespace litamin2;
@@ -14,15 +16,7 @@ using namespace litamin2::mapping;
 
 namespace {
 
-Eigen::Isometry3d pose_of(double x, double y, double z, double roll, double pitch, double yaw) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
-                   Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
-                   Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
-                      .toRotationMatrix();
-  pose.translation() = Eigen::Vector3d(x, y, z);
-  return pose;
-}
+using litamin2::testing::pose_of;
 
 /// The residual coordinates of T_ab' relative to T_ab, as pose_graph.cpp defines them:
 /// translation difference in a's frame, rotation of T_ab^-1 T_ab' as a rotation vector.

@@ -4,6 +4,8 @@
 
 #include "litamin2/mapping/pose_graph.hpp"
 
+#include "support/poses.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,15 +15,7 @@ using namespace litamin2::mapping;
 
 namespace {
 
-Eigen::Isometry3d pose_of(double x, double y, double z, double roll, double pitch, double yaw) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
-                   Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
-                   Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
-                      .toRotationMatrix();
-  pose.translation() = Eigen::Vector3d(x, y, z);
-  return pose;
-}
+using litamin2::testing::pose_of;
 
 double rotation_error_deg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return Eigen::AngleAxisd(a.rotation().transpose() * b.rotation()).angle() * 180.0 / M_PI;
