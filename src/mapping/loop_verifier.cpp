@@ -128,6 +128,7 @@ LoopVerification verify_loop(const std::vector<Distribution>& query, const Voxel
   wide.mode = CostMode::Icp;
   wide.sigma_icp = config.sigma_icp;
   wide.max_iterations = 50;
+  wide.max_isotropy = config.max_isotropy;
   RegistrationResult result = register_distributions(query, submap, *search, best, wide);
   if (!result.valid) {
     out.reason = "registration failed";

@@ -25,6 +25,7 @@ MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
   LoopVerificationConfig& v = config.verification;
   verification.read_range("submap_neighbours", v.submap_neighbours, 0, 100);
   verification.read_range("sigma_icp", v.sigma_icp, 1e-3, 100.0);
+  verification.read_range("max_isotropy", v.max_isotropy, 1e-6, 1.0);
   verification.read_range("fitness_distance", v.fitness_distance, 1e-3, 100.0);
   verification.read_range("min_fitness", v.min_fitness, 0.0, 1.0);
   verification.read_range("max_rmse", v.max_rmse, 1e-3, 100.0);
@@ -89,6 +90,7 @@ std::string mapper_config_to_yaml(const MapperConfig& c) {
   out << YAML::Key << "verification" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "submap_neighbours" << YAML::Value << c.verification.submap_neighbours;
   out << YAML::Key << "sigma_icp" << YAML::Value << c.verification.sigma_icp;
+  out << YAML::Key << "max_isotropy" << YAML::Value << c.verification.max_isotropy;
   out << YAML::Key << "fitness_distance" << YAML::Value << c.verification.fitness_distance;
   out << YAML::Key << "min_fitness" << YAML::Value << c.verification.min_fitness;
   out << YAML::Key << "max_rmse" << YAML::Value << c.verification.max_rmse;

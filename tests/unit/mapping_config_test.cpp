@@ -19,6 +19,7 @@ TEST(MappingConfig, EmittedYamlReadsBack) {
   MapperConfig config;
   config.place.proximity_radius = 7.5;
   config.verification.min_fitness = 0.7;
+  config.verification.max_isotropy = 0.05;
   config.graph.threads = 2;
   config.graph.odometry_covariance = OdometryCovariance::Distance;
   config.graph.tracker_covariance_scale = 4.0;
@@ -38,6 +39,8 @@ TEST(MappingConfig, BadKeysAndValuesAreNamed) {
   EXPECT_NE(message("verification: {min_fitnes: 0.5}").find("verification.min_fitnes"),
             std::string::npos);
   EXPECT_NE(message("verification: {min_fitness: 1.5}").find("verification.min_fitness"),
+            std::string::npos);
+  EXPECT_NE(message("verification: {max_isotropy: 0}").find("verification.max_isotropy"),
             std::string::npos);
   EXPECT_NE(message("pose_graph: {threads: many}").find("pose_graph.threads"), std::string::npos);
   EXPECT_NE(message("map_voxel_size: -1").find("map_voxel_size"), std::string::npos);

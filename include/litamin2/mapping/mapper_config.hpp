@@ -39,6 +39,10 @@ struct LoopVerificationConfig {
   int submap_neighbours = 3;
   /// Registration robust scale; wider than odometry's, as the initial guess is coarse, metres.
   double sigma_icp = 0.5;
+  /// RegistrationConfig::max_isotropy of the verifying registration. 1 (every correspondence,
+  /// the paper's cost): the odometry's 0.05 leaves too few correspondences to pull a coarse
+  /// estimate in between two vehicles' keyframes (MappingMapper test of two vehicles).
+  double max_isotropy = 1.0;
   /// Gate of the fitness score: distance along the normal of a query distribution to the
   /// nearest map distribution's surface, metres.
   double fitness_distance = 0.3;
