@@ -26,7 +26,7 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
   // Round combined distributions (not in the paper, RegistrationConfig::max_isotropy): their
   // mean depends on the viewpoint, which Eq. 3's normalised precision weights in every direction.
   if (config.max_isotropy < 1.0 &&
-      combined_isotropy(target.cov, rotated_cov, config.lambda) > config.max_isotropy) {
+      combined_is_round(target.cov, rotated_cov, config.lambda, config.max_isotropy)) {
     return;
   }
   // ICP term, Eq. 3, with its robust weight, Eq. 5.

@@ -184,5 +184,33 @@ TEST(IcpTerm, CombinedIsotropyIsSmallForPlanesAndOneForSpheres) {
   EXPECT_GT(combined_isotropy(sphere, plane, 0.0), 0.4);
 }
 
+TEST(IcpTerm, RoundTestAgreesWithTheEigenvalues) {
+  // combined_is_round decides most cases from the trace and determinant: it must agree with
+  // the eigenvalue ratio everywhere, including near the limit.
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> log_scale(-5.0, 0.5);
+  std::normal_distribution<double> n(0.0, 1.0);
+  auto random_covariance = [&] {
+    const Eigen::Matrix3d r = so3_exp(Eigen::Vector3d(n(rng), n(rng), n(rng)));
+    const Eigen::Vector3d eigenvalues(std::pow(10.0, log_scale(rng)),
+                                      std::pow(10.0, log_scale(rng)),
+                                      std::pow(10.0, log_scale(rng)));
+    return Eigen::Matrix3d(r * eigenvalues.asDiagonal() * r.transpose());
+  };
+  int round = 0, flat = 0;
+  for (const double limit : {0.01, 0.05, 0.2, 0.9}) {
+    for (int i = 0; i < 20000; ++i) {
+      const Eigen::Matrix3d cq = random_covariance();
+      const Eigen::Matrix3d cp = random_covariance();
+      const bool expected = combined_isotropy(cq, cp, 1e-6) > limit;
+      ASSERT_EQ(combined_is_round(cq, cp, 1e-6, limit), expected)
+          << "limit " << limit << ", isotropy " << combined_isotropy(cq, cp, 1e-6);
+      (expected ? round : flat)++;
+    }
+  }
+  EXPECT_GT(round, 10000);
+  EXPECT_GT(flat, 10000);
+}
+
 }  // namespace
 }  // namespace litamin2
