@@ -55,12 +55,12 @@ start=$(date +%s.%N)
 if [ "$rate" = max ]; then rate_args=(--max); else rate_args=(--rate "$rate"); fi
 # The replay reads and converts every scan before publishing (PRELOAD=0: while publishing), so
 # that on this one machine its disk reading does not take CPU from the daemon it measures.
-preload_args=()
-if [ "${PRELOAD:-1}" = 1 ]; then preload_args=(--preload); fi
+replay_args=()
+if [ "${PRELOAD:-1}" = 1 ]; then replay_args=(--preload); fi
 # STAGGER=1 spreads the streams' frames over the period (independent sensors); default: every
 # stream publishes at the same instant, the worst case for latency.
-if [ "${STAGGER:-0}" = 1 ] && [ "$rate" != max ]; then preload_args+=(--stagger); fi
-"$tools/replay/litamin2-replay" --domain 19 --profile loopback "${rate_args[@]}" "${preload_args[@]}" \
+if [ "${STAGGER:-0}" = 1 ] && [ "$rate" != max ]; then replay_args+=(--stagger); fi
+"$tools/replay/litamin2-replay" --domain 19 --profile loopback "${rate_args[@]}" "${replay_args[@]}" \
   "${replay_dirs[@]}" "${replay_streams[@]}" > replay.log 2>&1 || true
 wait $probe_pid || true
 end=$(date +%s.%N)

@@ -13,6 +13,8 @@
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
+#include <memory>
+
 #include <cstring>
 
 namespace litamin2 {
@@ -119,15 +121,25 @@ TEST(Registration, BitIdenticalForAnyThreadCount) {
   }
 }
 
-TEST(Registration, CovMinPointsGatesOnlyTheCovTerm) {
+/// A map of one synthetic scene and the distributions of another at a pose near it: the
+/// correspondences the registration gates are tested on.
+class GateTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    map.insert(testing::synthetic_scene(1), Eigen::Isometry3d::Identity());
+    search = make_correspondence_search(CorrespondenceMethod::Voxel27, map);
+    Voxelizer voxelizer(voxels);
+    source = voxelizer.voxelize(testing::synthetic_scene(2), pose);
+  }
   VoxelizerConfig voxels;
-  VoxelMap map(voxels, VoxelMapConfig{});
-  map.insert(testing::synthetic_scene(1), Eigen::Isometry3d::Identity());
-  Voxelizer voxelizer(voxels);
-  const auto search = make_correspondence_search(CorrespondenceMethod::Voxel27, map);
+  VoxelMap map{voxels, VoxelMapConfig{}};
+  std::unique_ptr<CorrespondenceSearch> search;
   const Eigen::Isometry3d pose =
       make_pose(Eigen::Vector3d(0.5, -0.3, 2), Eigen::Vector3d(0.2, 0.1, 0));
-  const std::vector<Distribution> source = voxelizer.voxelize(testing::synthetic_scene(2), pose);
+  std::vector<Distribution> source;
+};
+
+TEST_F(GateTest, CovMinPointsGatesOnlyTheCovTerm) {
   RegistrationConfig config;
   config.mode = CostMode::Icp;
   const CostEvaluation icp = evaluate_cost(source, map, *search, pose, config);
@@ -144,15 +156,7 @@ TEST(Registration, CovMinPointsGatesOnlyTheCovTerm) {
   EXPECT_EQ(all.gradient.tail<3>(), icp.gradient.tail<3>());  // the Cov term is free of t
 }
 
-TEST(Registration, MaxIsotropyDropsOnlyRoundCorrespondences) {
-  VoxelizerConfig voxels;
-  VoxelMap map(voxels, VoxelMapConfig{});
-  map.insert(testing::synthetic_scene(1), Eigen::Isometry3d::Identity());
-  Voxelizer voxelizer(voxels);
-  const auto search = make_correspondence_search(CorrespondenceMethod::Voxel27, map);
-  const Eigen::Isometry3d pose =
-      make_pose(Eigen::Vector3d(0.5, -0.3, 2), Eigen::Vector3d(0.2, 0.1, 0));
-  const std::vector<Distribution> source = voxelizer.voxelize(testing::synthetic_scene(2), pose);
+TEST_F(GateTest, MaxIsotropyDropsOnlyRoundCorrespondences) {
   RegistrationConfig config;
   const double limit = 0.05;
   // The correspondences the gate must keep: combined covariance flatter than the limit.
