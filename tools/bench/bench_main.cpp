@@ -104,19 +104,54 @@ BENCHMARK(BM_CostEvaluation)
     ->Args({2, 1})
     ->Unit(benchmark::kMicrosecond);
 
-/// Whole frames of a sequence (LITAMIN2_BENCH_SEQUENCE), preloaded: args threads, mode.
-void BM_TrackerFrames(benchmark::State& state) {
+/// The first 100 scans of the sequence folder LITAMIN2_BENCH_SEQUENCE, loaded once; null (and
+/// the benchmark skipped with a message) when the variable is not set.
+const std::vector<PointCloud>* sequence_scans(benchmark::State& state) {
   const char* folder = std::getenv("LITAMIN2_BENCH_SEQUENCE");
   if (!folder) {
     state.SkipWithError("set LITAMIN2_BENCH_SEQUENCE to a sequence folder (e.g. simulated)");
-    return;
+    return nullptr;
   }
-  static std::vector<PointCloud> scans;
-  if (scans.empty()) {
+  static const std::vector<PointCloud> scans = [folder] {
+    std::vector<PointCloud> loaded;
     const io::ScanSequence sequence(folder);
     const std::size_t n = std::min<std::size_t>(sequence.size(), 100);
-    for (std::size_t i = 0; i < n; ++i) scans.push_back(sequence.load(i));
-  }
+    for (std::size_t i = 0; i < n; ++i) loaded.push_back(sequence.load(i));
+    return loaded;
+  }();
+  return &scans;
+}
+
+/// Voxelisation of the sequence's first N scans (argument), one after another, single
+/// thread. With N = 1 the scan stays in the cache like BM_Voxelize's real scan, which makes the
+/// two comparable; N = 100 streams the scans from memory as whole frames do.
+void BM_VoxelizeSequence(benchmark::State& state) {
+  const std::vector<PointCloud>* loaded = sequence_scans(state);
+  if (!loaded) return;
+  const std::size_t n = std::min<std::size_t>(loaded->size(), state.range(0));
+  const std::vector<PointCloud> scans(loaded->begin(), loaded->begin() + n);
+  Voxelizer voxelizer(VoxelizerConfig{});
+  std::size_t points = 0;
+  for (const PointCloud& scan : scans) points += scan.size();
+  tbb::task_arena arena(1);
+  arena.execute([&] {
+    for (auto _ : state) {
+      for (const PointCloud& scan : scans) benchmark::DoNotOptimize(voxelizer.voxelize(scan));
+    }
+  });
+  state.SetItemsProcessed(state.iterations() * points);
+  state.counters["points_per_scan"] = static_cast<double>(points) / n;
+  state.counters["time_per_scan"] =
+      benchmark::Counter(static_cast<double>(n), benchmark::Counter::kIsIterationInvariantRate |
+                                                     benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_VoxelizeSequence)->Arg(1)->Arg(100)->Unit(benchmark::kMillisecond);
+
+/// Whole frames of a sequence (LITAMIN2_BENCH_SEQUENCE), preloaded: args threads, mode.
+void BM_TrackerFrames(benchmark::State& state) {
+  const std::vector<PointCloud>* sequence = sequence_scans(state);
+  if (!sequence) return;
+  const std::vector<PointCloud>& scans = *sequence;
   TrackerConfig config;
   config.registration.mode = state.range(1) ? CostMode::IcpCov : CostMode::Icp;
   in_arena(state, [&] {

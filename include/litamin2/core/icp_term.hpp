@@ -11,8 +11,6 @@
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 
-#include <cmath>
-
 namespace litamin2 {
 
 /// The normalised combined precision C_qp of Eq. 3. `rotated_cp` is R Cp R^T.
@@ -36,16 +34,17 @@ inline double combined_isotropy(const Eigen::Matrix3d& cq, const Eigen::Matrix3d
 /// combined_isotropy(cq, rotated_cp, lambda) > max_isotropy, from the trace and determinant
 /// where they settle it (most distributions are clearly flat), else from the eigenvalues.
 /// With eigenvalues a <= b <= c of the combined covariance (trace s, determinant d):
-///   a^3 <= abc = d and c >= s/3, so a/c <= 3 d^(1/3) / s;
+///   a^3 <= abc = d and c >= s/3, so (a/c)^3 <= 27 d / s^3;
 ///   a/c = d / (b c^2) and b c^2 <= 4 s^3 / 27 (b + c <= s, b <= c), so a/c >= 27 d / (4 s^3).
 inline bool combined_is_round(const Eigen::Matrix3d& cq, const Eigen::Matrix3d& rotated_cp,
                               double lambda, double max_isotropy) {
   const Eigen::Matrix3d combined = cq + rotated_cp + lambda * Eigen::Matrix3d::Identity();
   const double s = combined.trace();
   const double d = combined.determinant();
+  const double ratio = 27.0 * d / (s * s * s);  // (a/c)^3 <= ratio <= 4 a/c
   // Margins keep rounding in the bounds from deciding a case the eigenvalues would not.
-  if (3.0 * std::cbrt(d) / s < max_isotropy * (1.0 - 1e-9)) return false;
-  if (27.0 * d / (4.0 * s * s * s) > max_isotropy * (1.0 + 1e-9)) return true;
+  if (ratio < max_isotropy * max_isotropy * max_isotropy * (1.0 - 1e-9)) return false;
+  if (ratio > 4.0 * max_isotropy * (1.0 + 1e-9)) return true;
   return combined_isotropy(cq, rotated_cp, lambda) > max_isotropy;
 }
 
