@@ -1,14 +1,17 @@
 // The SSE2 voting kernel against the portable double loop: same voxels, same counts (but for
 // points within float rounding of a voxel face), same moments to float accuracy; and the
-// dispatch falls back to the portable loop where local keys would not fit.
+// dispatch falls back to the portable loop where local keys would not fit; and the AVX2 keying
+// step gives the SSE2 one's keys and offsets bit for bit.
 
 #include "litamin2/core/so3.hpp"
+#include "litamin2/core/voxel_keying.hpp"
 #include "litamin2/core/voxel_voting.hpp"
 #include "litamin2/io/kitti_bin.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -156,6 +159,69 @@ TEST(VoxelVoting, FallsBackToScalarWhereLocalKeysDoNotFit) {
     EXPECT_EQ(a.sum_sq, e.sum_sq);
   }
 }
+
+#if defined(LITAMIN2_HAVE_SSE2_VOTING)
+TEST(VoxelKeying, Avx2MatchesSse2BitForBit) {
+  using namespace sse2_voting;
+  if (!cpu_has_avx2()) GTEST_SKIP() << "this CPU has no AVX2";
+  std::mt19937 rng(5);
+  std::normal_distribution<float> coordinate(0.0f, 30.0f);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::normal_distribution<double> angle(0.0, 1.0);
+  constexpr int kMax = 256;
+  std::vector<Eigen::Vector3f> points(kMax);
+  alignas(32) std::uint32_t keys_sse2[kMax], keys_avx2[kMax];
+  alignas(32) float offsets_sse2[kMax][4], offsets_avx2[kMax][4];
+  int valid = 0, invalid = 0;
+  for (const float voxel_size : {0.5f, 3.0f}) {
+    for (const int count : {0, 1, 3, 4, 5, 7, 8, 9, 15, 16, 17, 31, 255, 256}) {
+      KeyingFrame frame;
+      const Eigen::Matrix3f r =
+          so3_exp(Eigen::Vector3d(angle(rng), angle(rng), angle(rng))).cast<float>();
+      for (int row = 0; row < 3; ++row) {
+        for (int col = 0; col < 3; ++col) frame.rotation[3 * row + col] = r(row, col);
+        frame.translation[row] = static_cast<float>(unit(rng)) * voxel_size;
+      }
+      frame.voxel_size = voxel_size;
+      frame.inv_voxel_size = 1.0f / voxel_size;
+      frame.min_range_sq = 1.0f;
+      frame.max_range_sq = 100.0f * 100.0f;
+      for (int i = 0; i < count; ++i) {
+        points[i] = Eigen::Vector3f(coordinate(rng), coordinate(rng), coordinate(rng));
+        const double kind = unit(rng);  // some points the range test or NaN/inf must drop
+        if (kind < 0.05)
+          points[i].x() = std::numeric_limits<float>::quiet_NaN();
+        else if (kind < 0.1)
+          points[i].y() = std::numeric_limits<float>::infinity();
+        else if (kind < 0.15)
+          points[i] *= 0.01f;  // within min_range
+        else if (kind < 0.2)
+          points[i] *= 10.0f;  // mostly beyond max_range
+      }
+      std::memset(keys_sse2, 0, sizeof(keys_sse2));
+      std::memset(keys_avx2, 0, sizeof(keys_avx2));
+      key_block_sse2(points.data(), count, frame, keys_sse2, offsets_sse2);
+      key_block_avx2(points.data(), count, frame, keys_avx2, offsets_avx2);
+      for (int i = 0; i < count; ++i) {
+        ASSERT_EQ(keys_avx2[i], keys_sse2[i]) << "point " << i << " of " << count;
+        if (keys_sse2[i] == kInvalidKey) {
+          ++invalid;
+          continue;
+        }
+        ++valid;
+        ASSERT_EQ(std::memcmp(offsets_avx2[i], offsets_sse2[i], sizeof(offsets_sse2[i])), 0)
+            << "point " << i << " of " << count;
+      }
+      for (int i = count; i < kMax; ++i) {  // nothing written past count
+        ASSERT_EQ(keys_sse2[i], 0u);
+        ASSERT_EQ(keys_avx2[i], 0u);
+      }
+    }
+  }
+  EXPECT_GT(valid, 500);
+  EXPECT_GT(invalid, 100);
+}
+#endif
 
 }  // namespace
 }  // namespace litamin2

@@ -2,8 +2,9 @@
 /// The SSE2 kernel of vote_points (x86-64 baseline, no -march needed).
 ///
 /// Same result as the scalar loop up to float rounding, about twice as fast. Blocks of points
-/// are first moved and keyed four at a time in float (phase A, branch-free), then summed in
-/// runs of same-voxel points (phase B). Two choices keep float exact enough:
+/// are first moved and keyed in float, four at a time or, on CPUs with AVX2 (chosen at run
+/// time), eight (phase A, branch-free, voxel_keying.hpp), then summed in runs of same-voxel
+/// points (phase B). Two choices keep float exact enough:
 /// - points are moved into a local frame whose origin is the voxel corner next to the pose's
 ///   translation, so coordinates stay within the scan's range (float error ~1e-5 m at 100 m)
 ///   and the voxel indices of a scan fit in 10 bits per axis;
@@ -13,6 +14,7 @@
 ///   into the voxel's double moments.
 
 #include "litamin2/core/voxel_key.hpp"
+#include "litamin2/core/voxel_keying.hpp"
 #include "litamin2/core/voxel_moments.hpp"
 #include "litamin2/core/voxelizer.hpp"
 
@@ -29,11 +31,6 @@
 namespace litamin2 {
 namespace sse2_voting {
 
-/// Bits per axis of the local (per-call) voxel key.
-constexpr int kLocalBits = 10;
-constexpr std::int32_t kLocalBias = 1 << (kLocalBits - 1);
-constexpr std::uint32_t kLocalMask = (1u << kLocalBits) - 1;
-constexpr std::uint32_t kInvalidKey = 0xFFFFFFFFu;
 /// Points moved and keyed per phase-A block.
 constexpr int kBlockPoints = 256;
 
@@ -112,30 +109,19 @@ void vote_points_sse2(const Eigen::Vector3f* begin, const Eigen::Vector3f* end,
   const Eigen::Vector3d corner = corner_index.cast<double>() * size;
   const Eigen::Vector3f local_t = (translation - corner).cast<float>();  // in [0, size)^3
   const Eigen::Matrix3f r = pose.linear().cast<float>();
+  KeyingFrame frame;
+  for (int row = 0; row < 3; ++row) {
+    for (int col = 0; col < 3; ++col) frame.rotation[3 * row + col] = r(row, col);
+    frame.translation[row] = local_t(row);
+  }
+  frame.voxel_size = static_cast<float>(size);
+  frame.inv_voxel_size = static_cast<float>(1.0 / size);
+  frame.min_range_sq = static_cast<float>(config.min_range * config.min_range);
+  frame.max_range_sq = static_cast<float>(config.max_range * config.max_range);
+  const bool avx2 = use_avx2_keying();
 
-  const __m128 r00 = _mm_set1_ps(r(0, 0)), r01 = _mm_set1_ps(r(0, 1)), r02 = _mm_set1_ps(r(0, 2));
-  const __m128 r10 = _mm_set1_ps(r(1, 0)), r11 = _mm_set1_ps(r(1, 1)), r12 = _mm_set1_ps(r(1, 2));
-  const __m128 r20 = _mm_set1_ps(r(2, 0)), r21 = _mm_set1_ps(r(2, 1)), r22 = _mm_set1_ps(r(2, 2));
-  const __m128 tx = _mm_set1_ps(local_t.x()), ty = _mm_set1_ps(local_t.y()),
-               tz = _mm_set1_ps(local_t.z());
-  const __m128 inv_size = _mm_set1_ps(static_cast<float>(1.0 / size));
-  const __m128 size_f = _mm_set1_ps(static_cast<float>(size));
-  const __m128 half = _mm_set1_ps(0.5f);
-  const __m128 one = _mm_set1_ps(1.0f);
-  const __m128 min_range_sq = _mm_set1_ps(static_cast<float>(config.min_range * config.min_range));
-  const __m128 max_range_sq = _mm_set1_ps(static_cast<float>(config.max_range * config.max_range));
-  const __m128i bias = _mm_set1_epi32(kLocalBias);
-  const __m128i invalid = _mm_set1_epi32(static_cast<int>(kInvalidKey));
-
-  alignas(16) std::uint32_t keys[kBlockPoints];
-  alignas(16) float offsets[kBlockPoints][4];  // point - voxel centre (local frame), then 1
-
-  // floor of four floats: truncate, then subtract 1 where truncation rounded up (negatives).
-  auto floor_epi32 = [](__m128 v) {
-    const __m128i truncated = _mm_cvttps_epi32(v);
-    const __m128 rounded_up = _mm_cmplt_ps(v, _mm_cvtepi32_ps(truncated));
-    return _mm_add_epi32(truncated, _mm_castps_si128(rounded_up));  // mask is -1 where set
-  };
+  alignas(32) std::uint32_t keys[kBlockPoints];
+  alignas(32) float offsets[kBlockPoints][4];  // point - voxel centre (local frame), then 1
 
   Run run;
   auto flush = [&](const Run& finished) {
@@ -150,58 +136,11 @@ void vote_points_sse2(const Eigen::Vector3f* begin, const Eigen::Vector3f* end,
 
   for (const Eigen::Vector3f* block = begin; block < end; block += kBlockPoints) {
     const int count = static_cast<int>(std::min<std::ptrdiff_t>(kBlockPoints, end - block));
-    // Phase A: move, range-check and key four points at a time.
-    for (int i = 0; i < count; i += 4) {
-      __m128 x, y, z;
-      if (i + 4 <= count) {
-        const Eigen::Vector3f* p = block + i;
-        x = _mm_set_ps(p[3].x(), p[2].x(), p[1].x(), p[0].x());
-        y = _mm_set_ps(p[3].y(), p[2].y(), p[1].y(), p[0].y());
-        z = _mm_set_ps(p[3].z(), p[2].z(), p[1].z(), p[0].z());
-      } else {
-        // The last group of a short block: lanes past the end are NaN and fail the range test.
-        alignas(16) float px[4], py[4], pz[4];
-        for (int lane = 0; lane < 4; ++lane) {
-          const bool inside = i + lane < count;
-          px[lane] = inside ? block[i + lane].x() : NAN;
-          py[lane] = inside ? block[i + lane].y() : NAN;
-          pz[lane] = inside ? block[i + lane].z() : NAN;
-        }
-        x = _mm_load_ps(px);
-        y = _mm_load_ps(py);
-        z = _mm_load_ps(pz);
-      }
-      const __m128 range_sq =
-          _mm_add_ps(_mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(y, y)), _mm_mul_ps(z, z));
-      // Ordered compares: false for NaN, so non-finite points are dropped too.
-      const __m128 in_range =
-          _mm_and_ps(_mm_cmpge_ps(range_sq, min_range_sq), _mm_cmple_ps(range_sq, max_range_sq));
-      const __m128 wx = _mm_add_ps(
-          _mm_add_ps(_mm_add_ps(_mm_mul_ps(r00, x), _mm_mul_ps(r01, y)), _mm_mul_ps(r02, z)), tx);
-      const __m128 wy = _mm_add_ps(
-          _mm_add_ps(_mm_add_ps(_mm_mul_ps(r10, x), _mm_mul_ps(r11, y)), _mm_mul_ps(r12, z)), ty);
-      const __m128 wz = _mm_add_ps(
-          _mm_add_ps(_mm_add_ps(_mm_mul_ps(r20, x), _mm_mul_ps(r21, y)), _mm_mul_ps(r22, z)), tz);
-      const __m128i ix = floor_epi32(_mm_mul_ps(wx, inv_size));
-      const __m128i iy = floor_epi32(_mm_mul_ps(wy, inv_size));
-      const __m128i iz = floor_epi32(_mm_mul_ps(wz, inv_size));
-      // Offsets from the voxel centres.
-      __m128 dx = _mm_sub_ps(wx, _mm_mul_ps(_mm_add_ps(_mm_cvtepi32_ps(ix), half), size_f));
-      __m128 dy = _mm_sub_ps(wy, _mm_mul_ps(_mm_add_ps(_mm_cvtepi32_ps(iy), half), size_f));
-      __m128 dz = _mm_sub_ps(wz, _mm_mul_ps(_mm_add_ps(_mm_cvtepi32_ps(iz), half), size_f));
-      __m128 w = one;
-      _MM_TRANSPOSE4_PS(dx, dy, dz, w);
-      _mm_store_ps(offsets[i], dx);
-      _mm_store_ps(offsets[i + 1], dy);
-      _mm_store_ps(offsets[i + 2], dz);
-      _mm_store_ps(offsets[i + 3], w);
-      const __m128i key =
-          _mm_or_si128(_mm_or_si128(_mm_add_epi32(ix, bias),
-                                    _mm_slli_epi32(_mm_add_epi32(iy, bias), kLocalBits)),
-                       _mm_slli_epi32(_mm_add_epi32(iz, bias), 2 * kLocalBits));
-      const __m128i valid = _mm_castps_si128(in_range);
-      _mm_store_si128(reinterpret_cast<__m128i*>(keys + i),
-                      _mm_or_si128(_mm_and_si128(valid, key), _mm_andnot_si128(valid, invalid)));
+    // Phase A: move, range-check and key the block (voxel_keying.hpp).
+    if (avx2) {
+      key_block_avx2(block, count, frame, keys, offsets);
+    } else {
+      key_block_sse2(block, count, frame, keys, offsets);
     }
     // Phase B: sum runs of same-voxel points.
     for (int i = 0; i < count; ++i) {
