@@ -8,17 +8,7 @@
 namespace litamin2::aggregator {
 
 std::string map_anchor(const mapping::Mapper& mapper) {
-  const mapping::KeyframePose* first = nullptr;
-  const mapping::Keyframe* first_kf = nullptr;
-  const std::vector<mapping::KeyframePose> poses = mapper.poses();
-  for (const mapping::KeyframePose& p : poses) {
-    const mapping::Keyframe* kf = mapper.keyframe(p.key);
-    if (kf && (!first_kf || mapping::canonical_before(*kf, *first_kf))) {
-      first = &p;
-      first_kf = kf;
-    }
-  }
-  return first ? first->frame : std::string();
+  return mapper.map_anchor();
 }
 
 namespace {

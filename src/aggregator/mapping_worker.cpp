@@ -26,6 +26,7 @@ MappingWorker::MappingWorker(AggregatorCore& core, PatchQueue& queue, Aggregator
   status_.keyframes = mapper.stats().keyframes;
   status_.loops = mapper.loops().size();
   status_.optimizations = mapper.stats().optimizations;
+  map_anchor_ = mapper.map_anchor();
   for (const mapping::KeyframePose& p : mapper.poses()) {
     StreamCounts& c = status_.streams[p.key.stream];
     ++c.keyframes;
@@ -89,6 +90,16 @@ void MappingWorker::process(std::vector<mapping::Keyframe>& batch) {
   if (r.new_loops > 0) spdlog::info("{} new loop edge(s)", r.new_loops);
   dirty_streams_.insert(r.streams.begin(), r.streams.end());
   if (r.added > 0) summary_dirty_ = true;
+  const std::string anchor = mapper.map_anchor();
+  if (anchor != map_anchor_) {
+    // A stream with earlier data arrived (streams starting together): the map frame is now
+    // another group's, which changes every stream's frame; tell them at once.
+    if (!map_anchor_.empty())
+      spdlog::info("map frame: now stream {}'s (was {}'s)", anchor, map_anchor_);
+    map_anchor_ = anchor;
+    for (const auto& [stream, counts] : status().streams) dirty_streams_.insert(stream);
+    poses_now_ = true;
+  }
 
   std::lock_guard lock(mutex_);
   status_.keyframes = mapper.stats().keyframes;
@@ -110,7 +121,8 @@ void MappingWorker::process(std::vector<mapping::Keyframe>& batch) {
 
 void MappingWorker::publish(bool force) {
   const auto now = Clock::now();
-  if (!dirty_streams_.empty() && (force || now >= next_poses_)) {
+  if (!dirty_streams_.empty() && (force || poses_now_ || now >= next_poses_)) {
+    poses_now_ = false;
     const double t = thread_cpu_seconds();
     const std::vector<std::string> streams(dirty_streams_.begin(), dirty_streams_.end());
     for (const StreamPoses& s : stream_poses(core_.mapper(), streams)) sink_.publish_poses(s);

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace litamin2::mapping {
 namespace {
@@ -41,8 +42,13 @@ struct Mapper::Impl {
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   };
   struct Stream {
-    /// Order in which streams were first seen: the earliest stream of a group is its anchor.
-    std::size_t order = 0;
+    /// The stream's canonically first keyframe (mapping::canonical_before: stamp, then
+    /// stream, then id). Of two groups that meet, the one whose anchor's first keyframe comes
+    /// first keeps its frame; so a group's anchor, and the map's (the stream of the first
+    /// keyframe of all), do not depend on the order in which keyframes arrived, and a mapper
+    /// rebuilt from the store in canonical order agrees with the live one.
+    std::int64_t first_stamp_ns = 0;
+    std::uint64_t first_id = 0;
     /// Union-find parent (a stream name); the root is the group's anchor.
     std::string parent;
     /// Keyframe ids present, with the odometry path length from the stream's first keyframe.
@@ -60,6 +66,22 @@ struct Mapper::Impl {
   MapperStats stats;
   MapperCpu cpu;
   int loops_since_optimize = 0;
+
+  /// True when stream a's first keyframe comes before stream b's (canonical order).
+  bool starts_before(const std::string& a, const std::string& b) const {
+    const Stream& sa = streams.at(a);
+    const Stream& sb = streams.at(b);
+    return std::tie(sa.first_stamp_ns, a, sa.first_id) <
+           std::tie(sb.first_stamp_ns, b, sb.first_id);
+  }
+
+  /// The stream whose first keyframe is the first of all (empty without keyframes).
+  std::string first_stream() const {
+    std::string first;
+    for (const auto& [name, stream] : streams)
+      if (first.empty() || starts_before(name, first)) first = name;
+    return first;
+  }
 
   std::string anchor_of(const std::string& stream) const {
     std::string s = stream;
@@ -239,7 +261,7 @@ struct Mapper::Impl {
     if (a != b) {
       // Two groups meet: move the later group rigidly onto the earlier one's frame through
       // this loop, so the optimiser starts near the answer.
-      const bool keep_a = streams.at(a).order < streams.at(b).order;
+      const bool keep_a = starts_before(a, b);
       const std::string& keep = keep_a ? a : b;
       const std::string& moved = keep_a ? b : a;
       const Entry& from = entries.at(edge.from);
@@ -382,9 +404,12 @@ AddStatus Mapper::add_keyframe(Keyframe keyframe, std::vector<LoopEdge>* new_loo
   }
   const std::string name = keyframe.key.stream;
   auto [stream_it, new_stream] = m.streams.try_emplace(name);
-  if (new_stream) {
-    stream_it->second.order = m.streams.size() - 1;
-    stream_it->second.parent = name;
+  Impl::Stream& stream = stream_it->second;
+  if (new_stream) stream.parent = name;
+  if (new_stream || std::tie(keyframe.stamp_ns, keyframe.key.id) <
+                        std::tie(stream.first_stamp_ns, stream.first_id)) {
+    stream.first_stamp_ns = keyframe.stamp_ns;
+    stream.first_id = keyframe.key.id;
   }
   const KeyframeKey key = keyframe.key;
   Impl::Entry entry;
@@ -476,6 +501,11 @@ std::optional<KeyframePose> Mapper::correction(const std::string& stream,
                       impl_->anchor_of(stream)};
 }
 
+std::string Mapper::map_anchor() const {
+  const std::string first = impl_->first_stream();
+  return first.empty() ? first : impl_->anchor_of(first);
+}
+
 const std::vector<LoopEdge>& Mapper::loops() const {
   return impl_->loops;
 }
@@ -500,10 +530,7 @@ std::vector<Distribution> Mapper::global_map() const {
   voxels.voxel_size = m.config.map_voxel_size;
   VoxelMap map(voxels, VoxelMapConfig{});
   if (m.streams.empty()) return {};
-  std::string first;
-  for (const auto& [name, stream] : m.streams)
-    if (stream.order == 0) first = name;
-  const std::string anchor = m.anchor_of(first);
+  const std::string anchor = m.anchor_of(m.first_stream());
   // Every keyframe's moments moved to the map frame, merged in one insertion (VoxelMap
   // rebuilds its distributions after each insertion).
   GridVoxels all;

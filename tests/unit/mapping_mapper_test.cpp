@@ -137,3 +137,27 @@ TEST(MappingMapper, TwoVehiclesAtUnknownRelativePosesEndInOneFrame) {
   EXPECT_LT(worst_error(mapper, "b", truth_b, truth_a[0]), 0.3);
   EXPECT_LT(worst_error(mapper, "a", truth_a, truth_a[0]), 0.3);
 }
+
+TEST(MappingMapper, MapFrameDoesNotDependOnArrivalOrder) {
+  // As above, but b's keyframes reach the mapper first (b's daemon published first): a's data
+  // comes first in time, so the map and the merged group are still in a's frame, as a mapper
+  // rebuilt from the store in canonical order would have them.
+  const auto truth = out_and_back();
+  const std::vector<Eigen::Isometry3d> truth_b(truth.begin() + 21, truth.end());
+  const std::vector<Eigen::Isometry3d> truth_a(truth.begin(), truth.begin() + 21);
+  auto a = drive("a", truth_a, 0.0, 1);
+  auto b = drive("b", truth_b, 0.0, 2);
+  for (auto& kf : b) kf.stamp_ns += 1000000000;
+  Mapper mapper(street_config());
+  for (const auto& kf : b) mapper.add_keyframe(kf);
+  EXPECT_EQ(mapper.map_anchor(), "b");  // alone, b is the map
+  for (const auto& kf : a) mapper.add_keyframe(kf);
+  mapper.optimize();
+  ASSERT_FALSE(mapper.loops().empty());
+  EXPECT_EQ(mapper.map_anchor(), "a");
+  const auto pose_b = mapper.pose({"b", 10});
+  ASSERT_TRUE(pose_b);
+  EXPECT_EQ(pose_b->frame, "a") << "a was moved into b's frame";
+  EXPECT_LT(worst_error(mapper, "b", truth_b, truth_a[0]), 0.3);
+  EXPECT_LT(worst_error(mapper, "a", truth_a, truth_a[0]), 0.3);
+}

@@ -89,6 +89,10 @@ class MappingWorker {
 
   // Mapping thread only.
   std::set<std::string> dirty_streams_;
+  /// The map frame's anchor stream (Mapper::map_anchor) after the last batch.
+  std::string map_anchor_;
+  /// Publish the dirty streams' poses without waiting for the period (the map frame moved).
+  bool poses_now_ = false;
   bool summary_dirty_ = true;
   Clock::time_point next_poses_{};
   Clock::time_point next_summary_{};

@@ -95,6 +95,11 @@ class Mapper {
   /// stream's latest keyframe at or before `id` (the latest keyframe if id is absent).
   std::optional<KeyframePose> correction(const std::string& stream,
                                          std::optional<std::uint64_t> id = std::nullopt) const;
+  /// The map frame: the anchor of the group holding the canonically first keyframe of all
+  /// (mapping::canonical_before; every group is in the frame of its anchor stream, of two
+  /// groups that meet the one whose anchor's first keyframe comes first keeps its frame).
+  /// Empty without keyframes.
+  std::string map_anchor() const;
   const std::vector<LoopEdge>& loops() const;
   MapperStats stats() const;
   MapperCpu cpu() const;
