@@ -3,19 +3,14 @@
 #include <algorithm>
 #include <map>
 #include <set>
-#include <tuple>
 
 namespace litamin2::aggregator {
-
-std::string map_anchor(const mapping::Mapper& mapper) {
-  return mapper.map_anchor();
-}
 
 namespace {
 
 std::vector<StreamPoses> collect(const mapping::Mapper& mapper,
                                  const std::set<std::string>* wanted) {
-  const std::string anchor = map_anchor(mapper);
+  const std::string anchor = mapper.map_anchor();
   std::map<std::string, StreamPoses> by_stream;
   for (const mapping::KeyframePose& p : mapper.poses()) {
     if (wanted && !wanted->count(p.key.stream)) continue;
@@ -55,7 +50,7 @@ std::vector<StreamPoses> stream_poses(const mapping::Mapper& mapper,
 MapSummary map_summary(const mapping::Mapper& mapper, const std::vector<Distribution>& global_map,
                        std::size_t max_means) {
   MapSummary s;
-  s.anchor = map_anchor(mapper);
+  s.anchor = mapper.map_anchor();
   s.voxel_size = mapper.config().map_voxel_size;
   s.voxels = global_map.size();
   const mapping::MapperStats stats = mapper.stats();

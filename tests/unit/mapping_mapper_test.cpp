@@ -117,47 +117,52 @@ TEST(MappingMapper, LoopsCorrectADriftingDrive) {
   EXPECT_GT(without.global_map().size(), 100u);
 }
 
-TEST(MappingMapper, TwoVehiclesAtUnknownRelativePosesEndInOneFrame) {
-  const auto truth = out_and_back();
-  // Vehicle b drives the same street later, starting at the far end: its odometry frame is
-  // its own first pose, 60 m and 180 degrees from a's.
-  const std::vector<Eigen::Isometry3d> truth_b(truth.begin() + 21, truth.end());
-  const std::vector<Eigen::Isometry3d> truth_a(truth.begin(), truth.begin() + 21);
-  auto a = drive("a", truth_a, 0.0, 1);
-  auto b = drive("b", truth_b, 0.0, 2);
-  for (auto& kf : b) kf.stamp_ns += 1000000000;
+/// Two vehicles on the street: b drives it later, starting at the far end, so its odometry
+/// frame (its own first pose) is 60 m and 180 degrees from a's. Keyframes are given to the
+/// mapper in `arrival` order, all of one vehicle and then all of the other.
+class TwoVehicles : public ::testing::Test {
+ protected:
+  TwoVehicles() {
+    const auto truth = out_and_back();
+    truth_a.assign(truth.begin(), truth.begin() + 21);
+    truth_b.assign(truth.begin() + 21, truth.end());
+    a = drive("a", truth_a, 0.0, 1);
+    b = drive("b", truth_b, 0.0, 2);
+    for (auto& kf : b) kf.stamp_ns += 1000000000;
+  }
+
+  /// Checks that both vehicles end in a's frame, which is the map's, each keyframe within
+  /// 0.3 m of the truth relative to a's first pose.
+  void expect_both_in_a_frame(const Mapper& mapper) {
+    ASSERT_FALSE(mapper.loops().empty());
+    EXPECT_EQ(mapper.map_anchor(), "a");
+    const auto pose_b = mapper.pose({"b", 10});
+    ASSERT_TRUE(pose_b);
+    EXPECT_EQ(pose_b->frame, "a") << "b's keyframes are not in a's frame";
+    EXPECT_LT(worst_error(mapper, "b", truth_b, truth_a[0]), 0.3);
+    EXPECT_LT(worst_error(mapper, "a", truth_a, truth_a[0]), 0.3);
+  }
+
+  std::vector<Eigen::Isometry3d> truth_a, truth_b;
+  std::vector<Keyframe> a, b;
+};
+
+TEST_F(TwoVehicles, AtUnknownRelativePosesEndInOneFrame) {
   Mapper mapper(street_config());
   for (const auto& kf : a) mapper.add_keyframe(kf);
   for (const auto& kf : b) mapper.add_keyframe(kf);
   mapper.optimize();
-  const auto pose_b = mapper.pose({"b", 10});
-  ASSERT_TRUE(pose_b);
-  EXPECT_EQ(pose_b->frame, "a") << "b was not merged into a's frame";
-  // b's keyframes in a's frame match the truth relative to a's first pose.
-  EXPECT_LT(worst_error(mapper, "b", truth_b, truth_a[0]), 0.3);
-  EXPECT_LT(worst_error(mapper, "a", truth_a, truth_a[0]), 0.3);
+  expect_both_in_a_frame(mapper);
 }
 
-TEST(MappingMapper, MapFrameDoesNotDependOnArrivalOrder) {
-  // As above, but b's keyframes reach the mapper first (b's daemon published first): a's data
-  // comes first in time, so the map and the merged group are still in a's frame, as a mapper
-  // rebuilt from the store in canonical order would have them.
-  const auto truth = out_and_back();
-  const std::vector<Eigen::Isometry3d> truth_b(truth.begin() + 21, truth.end());
-  const std::vector<Eigen::Isometry3d> truth_a(truth.begin(), truth.begin() + 21);
-  auto a = drive("a", truth_a, 0.0, 1);
-  auto b = drive("b", truth_b, 0.0, 2);
-  for (auto& kf : b) kf.stamp_ns += 1000000000;
+TEST_F(TwoVehicles, MapFrameDoesNotDependOnArrivalOrder) {
+  // b's keyframes reach the mapper first (b's daemon published first), but a's data comes
+  // first in time: the map and the merged group are still in a's frame, as a mapper rebuilt
+  // from the store in canonical order would have them.
   Mapper mapper(street_config());
   for (const auto& kf : b) mapper.add_keyframe(kf);
   EXPECT_EQ(mapper.map_anchor(), "b");  // alone, b is the map
   for (const auto& kf : a) mapper.add_keyframe(kf);
   mapper.optimize();
-  ASSERT_FALSE(mapper.loops().empty());
-  EXPECT_EQ(mapper.map_anchor(), "a");
-  const auto pose_b = mapper.pose({"b", 10});
-  ASSERT_TRUE(pose_b);
-  EXPECT_EQ(pose_b->frame, "a") << "a was moved into b's frame";
-  EXPECT_LT(worst_error(mapper, "b", truth_b, truth_a[0]), 0.3);
-  EXPECT_LT(worst_error(mapper, "a", truth_a, truth_a[0]), 0.3);
+  expect_both_in_a_frame(mapper);
 }

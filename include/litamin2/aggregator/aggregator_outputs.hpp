@@ -45,9 +45,6 @@ struct MapSummary {
   std::vector<Eigen::Vector3f> means;
 };
 
-/// The map's anchor stream: the frame of the canonically first keyframe ("" if none).
-std::string map_anchor(const mapping::Mapper& mapper);
-
 /// Corrected poses of every stream, ordered by stream id.
 std::vector<StreamPoses> all_stream_poses(const mapping::Mapper& mapper);
 /// Corrected poses of the given streams (unknown ones are skipped).
