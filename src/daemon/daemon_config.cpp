@@ -263,6 +263,7 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
     outputs.read("map_patches_topic", config.outputs.map_patches_topic);
     outputs.read("status_topic", config.outputs.status_topic);
     outputs.read_range("status_period_s", config.outputs.status_period_s, 0.01, 3600.0);
+    outputs.read_range("map_patch_history", config.outputs.map_patch_history, 1, 1'000'000);
     outputs.read("odom_frame", config.outputs.odom_frame);
     outputs.reject_unknown();
     check_topic(config.outputs.odom_suffix, "outputs.odom_suffix");

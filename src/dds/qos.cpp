@@ -73,11 +73,12 @@ fdds::DataReaderQos odom_reader_qos(std::int32_t depth) {
   return qos;
 }
 
-fdds::DataWriterQos map_patches_writer_qos() {
+fdds::DataWriterQos map_patches_writer_qos(std::int32_t history_per_stream) {
   fdds::DataWriterQos qos = fdds::DATAWRITER_QOS_DEFAULT;
   common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::TRANSIENT_LOCAL_DURABILITY_QOS,
          fdds::KEEP_ALL_HISTORY_QOS, 1);
   unlimited(qos.resource_limits());
+  qos.resource_limits().max_samples_per_instance = history_per_stream > 0 ? history_per_stream : 1;
   return qos;
 }
 

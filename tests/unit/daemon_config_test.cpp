@@ -56,7 +56,7 @@ streams:
 discovery: {enabled: false}
 threads: 3
 queue_depth: 9
-outputs: {odom_suffix: odometry, status_period_s: 0.5}
+outputs: {odom_suffix: odometry, status_period_s: 0.5, map_patch_history: 50}
 watchdog: {enabled: false, stall_timeout_s: 3}
 log_level: debug
 shutdown_timeout_s: 0.5
@@ -84,6 +84,7 @@ shutdown_timeout_s: 0.5
   EXPECT_EQ(c.queue_depth, 9);
   EXPECT_EQ(c.outputs.odom_suffix, "odometry");
   EXPECT_EQ(c.outputs.status_period_s, 0.5);
+  EXPECT_EQ(c.outputs.map_patch_history, 50);
   EXPECT_EQ(c.outputs.map_patches_topic, "rt/litamin2/map_patches");
   EXPECT_FALSE(c.watchdog.enabled);
   EXPECT_EQ(c.watchdog.stall_timeout_s, 3.0);
@@ -136,6 +137,8 @@ TEST(DaemonConfig, ErrorsNameKeyAndValue) {
   EXPECT_EQ(error_of(ok + "tracker: {voxeliser: {}}"), "tracker.voxeliser: unknown key");
   EXPECT_EQ(error_of(ok + "outputs: {status_period_s: 0}"),
             "outputs.status_period_s: 0 is out of range [0.01, 3600]");
+  EXPECT_EQ(error_of(ok + "outputs: {map_patch_history: 0}"),
+            "outputs.map_patch_history: 0 is out of range [1, 1000000]");
   EXPECT_EQ(error_of(ok + "watchdog: {enable: true}"), "watchdog.enable: unknown key");
   EXPECT_EQ(error_of(ok + "streams: {id: a}"),
             "streams: expected a list of streams, got '{id: a}'");

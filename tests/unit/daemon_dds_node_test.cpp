@@ -128,14 +128,14 @@ TEST(DaemonNode, OverloadKeepsMemoryFlat) {
   // In steady state everything is bounded: the queue (2 frames of 20k points, 2 x 240 KB), the
   // frame in processing, the writer's history (10 samples x 320 KB), the reader's (keep-last
   // 10), and the tracker's map (the sensor circles in a 4 m wide loop in one scene that every
-  // scan sees whole, so the map is full after the first keyframes). One thing grows for a
-  // while: the map-patch writer (transient-local, keep-all) keeps each keyframe's patch for
-  // late readers, up to Fast DDS's default 400 per stream: here ~32 KB each (every processed
-  // frame turns 9 degrees, so is a keyframe), ~13 MB at most. 30 MB covers that plus allocator
-  // and DDS pool noise (measured: 5 MB over ~60 processed frames, 16 MB over 500 at 40 Hz);
-  // leaking one converted scan (240 KB) per frame received after the first 100 would add
-  // hundreds of MB, and patches kept without a limit grow past it after ~900 keyframes.
-  constexpr double kBoundMb = 30.0;
+  // scan sees whole, so the map is full after the first keyframes), and the map-patch writer
+  // (transient-local, keep-all), which holds the latest outputs.map_patch_history patches per
+  // stream for late readers: 100 here, ~32 KB each (every processed frame turns 9 degrees, so
+  // is a keyframe), ~3 MB. 20 MB covers that plus allocator and DDS pool noise (measured on
+  // 2026-12-01: +6 MB over 920 keyframes, +7 MB over 4620 in a 40 s run); leaking one
+  // converted scan (240 KB) per frame received after the first 100 would add hundreds of MB,
+  // and patches held without a limit (as before that date) added 30 MB over 850 keyframes.
+  constexpr double kBoundMb = 20.0;
   constexpr int kMaxFrames = 4000;
   constexpr double kRateHz = 400.0;
   constexpr auto kMaxPublishTime = 15s;
@@ -145,6 +145,7 @@ TEST(DaemonNode, OverloadKeepsMemoryFlat) {
 streams: [{id: dnode_flood}]
 threads: 1
 queue_depth: 2
+outputs: {map_patch_history: 100}
 shutdown_timeout_s: 5
 )"));
   CloudPublisher publisher(domain);

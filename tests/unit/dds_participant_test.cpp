@@ -87,7 +87,9 @@ TEST(DdsParticipant, TopicQos) {
   EXPECT_EQ(points_writer_qos(true).reliability().kind, fdds::BEST_EFFORT_RELIABILITY_QOS);
   EXPECT_EQ(odom_writer_qos().reliability().kind, fdds::RELIABLE_RELIABILITY_QOS);
   EXPECT_EQ(odom_writer_qos().history().kind, fdds::KEEP_LAST_HISTORY_QOS);
-  EXPECT_EQ(map_patches_writer_qos().durability().kind, fdds::TRANSIENT_LOCAL_DURABILITY_QOS);
+  EXPECT_EQ(map_patches_writer_qos(500).durability().kind, fdds::TRANSIENT_LOCAL_DURABILITY_QOS);
+  EXPECT_EQ(map_patches_writer_qos(500).history().kind, fdds::KEEP_ALL_HISTORY_QOS);
+  EXPECT_EQ(map_patches_writer_qos(500).resource_limits().max_samples_per_instance, 500);
   EXPECT_EQ(map_patches_reader_qos().durability().kind, fdds::TRANSIENT_LOCAL_DURABILITY_QOS);
   EXPECT_EQ(status_reader_qos().reliability().kind, fdds::RELIABLE_RELIABILITY_QOS);
 }

@@ -73,6 +73,10 @@ struct OutputsConfig {
   std::string status_topic = "rt/litamin2/status";
   /// Status (DiagnosticArray) period, seconds.
   double status_period_s = 1.0;
+  /// Map patches held per stream for aggregators that start late or restart (transient-local):
+  /// about 40 KB each at 3 m voxels, so 500 are ~20 MB per stream and, at a keyframe every
+  /// 2 m and 10 m/s, the last 100 s of driving.
+  int map_patch_history = 500;
   /// frame_id of published odometry headers; child_frame_id is "<stream>/base_link".
   std::string odom_frame = "odom";
 };

@@ -24,10 +24,12 @@ eprosima::fastdds::dds::DataWriterQos points_writer_qos(bool best_effort = false
 /// rt/<stream>/odom: reliable, volatile, keep-last `depth`.
 eprosima::fastdds::dds::DataWriterQos odom_writer_qos(std::int32_t depth = 100);
 eprosima::fastdds::dds::DataReaderQos odom_reader_qos(std::int32_t depth = 100);
-/// rt/litamin2/map_patches: reliable, transient-local, keep-all (per stream instance; a late
-/// reader receives every patch still held by the writer).
-/// Resource limits unlimited: any number of streams and of patches per stream.
-eprosima::fastdds::dds::DataWriterQos map_patches_writer_qos();
+/// rt/litamin2/map_patches: reliable, transient-local, keep-all per stream instance, any number
+/// of streams. The writer holds the latest `history_per_stream` patches of each stream for late
+/// readers (an aggregator starting or restarting); when a stream's history is full, writing
+/// waits until matched readers have acknowledged its oldest patch, which is then dropped, so
+/// live readers lose nothing and memory stays bounded.
+eprosima::fastdds::dds::DataWriterQos map_patches_writer_qos(std::int32_t history_per_stream);
 eprosima::fastdds::dds::DataReaderQos map_patches_reader_qos();
 /// rt/litamin2/status: reliable, volatile, keep-last `depth`.
 eprosima::fastdds::dds::DataWriterQos status_writer_qos(std::int32_t depth = 10);

@@ -226,7 +226,8 @@ int main(int argc, char** argv) {
                                           fdds::TOPIC_QOS_DEFAULT);
   auto* publisher = participant->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
   MatchListener match;
-  auto* writer = publisher->create_datawriter(topic, litamin2::dds::map_patches_writer_qos(),
+  // Holds every patch it sends, as the load tests count them all at the aggregator.
+  auto* writer = publisher->create_datawriter(topic, litamin2::dds::map_patches_writer_qos(100'000),
                                               &match, fdds::StatusMask::publication_matched());
   if (!writer) {
     std::fprintf(stderr, "probe: no writer\n");
