@@ -75,7 +75,8 @@ DaemonNode::DaemonNode(DaemonConfig config) : config_(std::move(config)) {
   auto* status_topic = participant_->create_topic(
       config_.outputs.status_topic, status_type_.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
   if (!patches_topic || !status_topic) throw std::runtime_error("cannot create output topics");
-  map_patch_writer_ = publisher_->create_datawriter(patches_topic, dds::map_patches_writer_qos(config_.outputs.map_patch_history));
+  map_patch_writer_ = publisher_->create_datawriter(
+      patches_topic, dds::map_patches_writer_qos(config_.outputs.map_patch_history));
   status_writer_ = publisher_->create_datawriter(status_topic, dds::status_writer_qos());
   if (!map_patch_writer_ || !status_writer_)
     throw std::runtime_error("cannot create output writers");
