@@ -81,8 +81,9 @@ void MappingWorker::process(std::vector<mapping::Keyframe>& batch) {
   }
   busy_since_ = 0;
   const mapping::Mapper& mapper = core_.mapper();
+  // An optimisation, or the map frame moving to another group, changes every stream's poses.
+  bool all_changed = r.optimization.ran;
   if (r.optimization.ran) {
-    for (const auto& [stream, counts] : status().streams) dirty_streams_.insert(stream);
     spdlog::info("optimised: {} keyframes, {} loop edges, cost {:.4g} -> {:.4g}, {:.1f} ms",
                  r.optimization.keyframes, r.optimization.loop_edges, r.optimization.initial_cost,
                  r.optimization.final_cost, r.optimization.milliseconds);
@@ -97,8 +98,11 @@ void MappingWorker::process(std::vector<mapping::Keyframe>& batch) {
     if (!map_anchor_.empty())
       spdlog::info("map frame: now stream {}'s (was {}'s)", anchor, map_anchor_);
     map_anchor_ = anchor;
-    for (const auto& [stream, counts] : status().streams) dirty_streams_.insert(stream);
+    all_changed = true;
     poses_now_ = true;
+  }
+  if (all_changed) {
+    for (const auto& [stream, counts] : status().streams) dirty_streams_.insert(stream);
   }
 
   std::lock_guard lock(mutex_);

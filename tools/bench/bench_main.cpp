@@ -129,14 +129,16 @@ void BM_VoxelizeSequence(benchmark::State& state) {
   const std::vector<PointCloud>* loaded = sequence_scans(state);
   if (!loaded) return;
   const std::size_t n = std::min<std::size_t>(loaded->size(), state.range(0));
-  const std::vector<PointCloud> scans(loaded->begin(), loaded->begin() + n);
+  const PointCloud* first = loaded->data();
+  const PointCloud* last = first + n;
   Voxelizer voxelizer(VoxelizerConfig{});
   std::size_t points = 0;
-  for (const PointCloud& scan : scans) points += scan.size();
+  for (const PointCloud* scan = first; scan != last; ++scan) points += scan->size();
   tbb::task_arena arena(1);
   arena.execute([&] {
     for (auto _ : state) {
-      for (const PointCloud& scan : scans) benchmark::DoNotOptimize(voxelizer.voxelize(scan));
+      for (const PointCloud* scan = first; scan != last; ++scan)
+        benchmark::DoNotOptimize(voxelizer.voxelize(*scan));
     }
   });
   state.SetItemsProcessed(state.iterations() * points);

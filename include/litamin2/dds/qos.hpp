@@ -27,8 +27,9 @@ eprosima::fastdds::dds::DataReaderQos odom_reader_qos(std::int32_t depth = 100);
 /// rt/litamin2/map_patches: reliable, transient-local, keep-all per stream instance, any number
 /// of streams. The writer holds the latest `history_per_stream` patches of each stream for late
 /// readers (an aggregator starting or restarting); when a stream's history is full, writing
-/// waits until matched readers have acknowledged its oldest patch, which is then dropped, so
-/// live readers lose nothing and memory stays bounded.
+/// waits (up to the writer's max_blocking_time, else the write fails) until matched readers
+/// have acknowledged its oldest patch, which is then dropped: live readers that keep up lose
+/// nothing and memory stays bounded.
 eprosima::fastdds::dds::DataWriterQos map_patches_writer_qos(std::int32_t history_per_stream);
 eprosima::fastdds::dds::DataReaderQos map_patches_reader_qos();
 /// rt/litamin2/status: reliable, volatile, keep-last `depth`.
