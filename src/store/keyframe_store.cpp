@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "litamin2/store/record_codec.hpp"
+#include "sqlite.hpp"
 
 namespace litamin2::store {
 
@@ -67,137 +68,6 @@ std::string hex32(std::uint32_t v) {
   char buf[16];
   std::snprintf(buf, sizeof(buf), "0x%08X", v);
   return buf;
-}
-
-[[noreturn]] void throw_sqlite(sqlite3* db, const std::string& path, const std::string& context) {
-  throw StoreError(path, context + ": " + (db ? sqlite3_errmsg(db) : "out of memory"));
-}
-
-struct ConnectionCloser {
-  void operator()(sqlite3* db) const { sqlite3_close_v2(db); }
-};
-using Connection = std::unique_ptr<sqlite3, ConnectionCloser>;
-
-Connection open_connection(const std::string& path, int flags) {
-  sqlite3* raw = nullptr;
-  const int rc = sqlite3_open_v2(path.c_str(), &raw, flags | SQLITE_OPEN_NOMUTEX, nullptr);
-  Connection db(raw);
-  if (rc != SQLITE_OK) throw_sqlite(db.get(), path, "cannot open");
-  sqlite3_extended_result_codes(db.get(), 1);
-  return db;
-}
-
-void exec(sqlite3* db, const std::string& path, const char* sql) {
-  if (sqlite3_exec(db, sql, nullptr, nullptr, nullptr) != SQLITE_OK) {
-    throw_sqlite(db, path, std::string("'") + sql + "' failed");
-  }
-}
-
-/// A prepared statement, finalised on destruction.
-class Statement {
- public:
-  Statement(sqlite3* db, const std::string& path, const char* sql) : db_(db), path_(&path) {
-    if (sqlite3_prepare_v3(db, sql, -1, SQLITE_PREPARE_PERSISTENT, &stmt_, nullptr) != SQLITE_OK) {
-      throw_sqlite(db, path, std::string("cannot prepare '") + sql + "'");
-    }
-  }
-  Statement(const Statement&) = delete;
-  Statement& operator=(const Statement&) = delete;
-  ~Statement() { sqlite3_finalize(stmt_); }
-
-  sqlite3_stmt* get() const { return stmt_; }
-
-  /// Steps once: true if a row is available, false when done. Throws on error, naming
-  /// `context`.
-  bool step(const std::string& context) {
-    const int rc = sqlite3_step(stmt_);
-    if (rc == SQLITE_ROW) return true;
-    if (rc == SQLITE_DONE) return false;
-    throw_sqlite(db_, *path_, context);
-  }
-  void reset() {
-    sqlite3_reset(stmt_);
-    sqlite3_clear_bindings(stmt_);
-  }
-
-  void bind(int i, std::int64_t v) { sqlite3_bind_int64(stmt_, i, v); }
-  void bind(int i, double v) { sqlite3_bind_double(stmt_, i, v); }
-  // The bound strings must outlive the step (SQLITE_STATIC avoids a copy of large BLOBs).
-  void bind_text(int i, const std::string& s) {
-    sqlite3_bind_text(stmt_, i, s.data(), static_cast<int>(s.size()), SQLITE_STATIC);
-  }
-  void bind_blob(int i, const std::string& s) {
-    sqlite3_bind_blob(stmt_, i, s.data(), static_cast<int>(s.size()), SQLITE_STATIC);
-  }
-
- private:
-  sqlite3* db_;
-  const std::string* path_;
-  sqlite3_stmt* stmt_ = nullptr;
-};
-
-/// Resets a statement (and clears its bindings) when leaving the scope that used it.
-struct ResetOnExit {
-  Statement& statement;
-  ~ResetOnExit() { statement.reset(); }
-};
-
-/// BEGIN IMMEDIATE ... COMMIT, rolled back if commit() is not reached.
-class Transaction {
- public:
-  Transaction(sqlite3* db, const std::string& path) : db_(db), path_(path) {
-    exec(db_, path_, "BEGIN IMMEDIATE");
-  }
-  Transaction(const Transaction&) = delete;
-  Transaction& operator=(const Transaction&) = delete;
-  ~Transaction() {
-    if (!done_) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
-  }
-  void commit() {
-    exec(db_, path_, "COMMIT");
-    done_ = true;
-  }
-
- private:
-  sqlite3* db_;
-  const std::string& path_;
-  bool done_ = false;
-};
-
-// Column readers of a row being loaded; they throw std::invalid_argument (turned into a
-// StoreError naming the row by the caller) when the stored value has the wrong type.
-std::string column_text(sqlite3_stmt* s, int i, const char* name) {
-  if (sqlite3_column_type(s, i) != SQLITE_TEXT) {
-    throw std::invalid_argument(std::string(name) + " is not text");
-  }
-  const auto* text = reinterpret_cast<const char*>(sqlite3_column_text(s, i));
-  return std::string(text, static_cast<std::size_t>(sqlite3_column_bytes(s, i)));
-}
-std::int64_t column_int(sqlite3_stmt* s, int i, const char* name) {
-  if (sqlite3_column_type(s, i) != SQLITE_INTEGER) {
-    throw std::invalid_argument(std::string(name) + " is not an integer");
-  }
-  return sqlite3_column_int64(s, i);
-}
-std::uint64_t column_id(sqlite3_stmt* s, int i, const char* name) {
-  const std::int64_t id = column_int(s, i, name);
-  if (id < 0) throw std::invalid_argument(std::string(name) + " is negative");
-  return static_cast<std::uint64_t>(id);
-}
-double column_real(sqlite3_stmt* s, int i, const char* name) {
-  const int type = sqlite3_column_type(s, i);
-  if (type != SQLITE_FLOAT && type != SQLITE_INTEGER) {
-    throw std::invalid_argument(std::string(name) + " is not a number");
-  }
-  return sqlite3_column_double(s, i);
-}
-/// The BLOB at column i: {data, size}. Pointer valid until the next step.
-std::pair<const void*, std::size_t> column_blob(sqlite3_stmt* s, int i, const char* name) {
-  if (sqlite3_column_type(s, i) != SQLITE_BLOB) {
-    throw std::invalid_argument(std::string(name) + " is not a blob");
-  }
-  const void* data = sqlite3_column_blob(s, i);
-  return {data, static_cast<std::size_t>(sqlite3_column_bytes(s, i))};
 }
 
 std::uint32_t big_endian32(const unsigned char* p) {
@@ -276,14 +146,6 @@ void check_file_header(const std::string& path, std::uintmax_t file_size) {
   const std::int32_t user_version = static_cast<std::int32_t>(big_endian32(header + 60));
   const std::uint32_t application_id = big_endian32(header + 68);
   check_identity(path, application_id, user_version);
-}
-
-std::int64_t query_int(sqlite3* db, const std::string& path, const char* sql) {
-  Statement s(db, path, sql);
-  if (!s.step(std::string("'") + sql + "' failed")) {
-    throw StoreError(path, std::string("'") + sql + "' returned no row");
-  }
-  return sqlite3_column_int64(s.get(), 0);
 }
 
 /// Checks through SQLite that the database at `path`, whose header says it is a keyframe
