@@ -9,22 +9,21 @@
 # with the default /usr/local prefix still makes a correct /usr + /etc package.
 include(GNUInstallDirs)
 
-# Executables. litamin2-odometry and litamin2d install themselves from their tool folders
-# (tools/odometry, tools/litamin2d); the deploy_install and deploy_package tests check that every
-# built executable of the product ends up in <prefix>/bin, so a rule lost there shows up.
-foreach(t litamin2-eval litamin2-sim litamin2-bench litamin2-replay litamin2-aggregator)
-  if(TARGET ${t})
-    install(TARGETS ${t} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-  endif()
-endforeach()
-# With -DBUILD_SHARED_LIBS=ON the executables need the project's libraries next to them.
-foreach(lib litamin2_core litamin2_io litamin2_eval litamin2_sim litamin2_dds litamin2_daemon
-    litamin2_mapping)
-  if(TARGET ${lib})
-    get_target_property(_l2_type ${lib} TYPE)
-    if(_l2_type STREQUAL "SHARED_LIBRARY")
-      install(TARGETS ${lib} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
-    endif()
+# Every tool and library declared with litamin2_add_tool / litamin2_add_library
+# (cmake/litamin2_targets.cmake): tools into <prefix>/bin; with -DBUILD_SHARED_LIBS=ON the
+# project's libraries into <prefix>/lib, where the tools' RPATH ($ORIGIN/../lib) finds them.
+# A static build's tools carry the libraries inside, so nothing else is installed. The
+# deploy_install and deploy_package tests check that every built tool lands in <prefix>/bin,
+# and deploy_shared_install that a shared build's installed tools run.
+get_property(_l2_tools GLOBAL PROPERTY LITAMIN2_TOOLS)
+if(_l2_tools)
+  install(TARGETS ${_l2_tools} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()
+get_property(_l2_libraries GLOBAL PROPERTY LITAMIN2_LIBRARIES)
+foreach(lib ${_l2_libraries})
+  get_target_property(_l2_type ${lib} TYPE)
+  if(_l2_type STREQUAL "SHARED_LIBRARY")
+    install(TARGETS ${lib} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
   endif()
 endforeach()
 

@@ -15,7 +15,7 @@ AggregatorCore::AggregatorCore(const std::string& store_path, store::OpenMode mo
                                const mapping::MapperConfig& mapper_config,
                                const store::StoreOptions& store_options, const Progress& progress)
     : store_(store::KeyframeStore::open(store_path, mode, store_options)), mapper_(mapper_config) {
-  std::vector<mapping::Keyframe> keyframes = store_.load_keyframes(regularizer());
+  std::vector<Keyframe> keyframes = store_.load_keyframes(regularizer());
   const std::size_t total = keyframes.size();
   for (std::size_t i = 0; i < total; ++i) {
     mapper_.add_keyframe(std::move(keyframes[i]));
@@ -25,14 +25,14 @@ AggregatorCore::AggregatorCore(const std::string& store_path, store::OpenMode mo
   if (mapper_.optimize().ran && mode != store::OpenMode::ReadOnly) save_graph();
 }
 
-IngestResult AggregatorCore::ingest(std::vector<mapping::Keyframe>& batch) {
+IngestResult AggregatorCore::ingest(std::vector<Keyframe>& batch) {
   IngestResult result;
   double t = thread_cpu_seconds();
   // Canonical order, and one keyframe per key (the first received wins).
-  std::stable_sort(batch.begin(), batch.end(), mapping::canonical_before);
+  std::stable_sort(batch.begin(), batch.end(), canonical_before);
   std::vector<std::size_t> fresh;
-  std::vector<const mapping::Keyframe*> to_store;
-  std::set<mapping::KeyframeKey> seen;
+  std::vector<const Keyframe*> to_store;
+  std::set<KeyframeKey> seen;
   for (std::size_t i = 0; i < batch.size(); ++i) {
     if (mapper_.contains(batch[i].key) || !seen.insert(batch[i].key).second) {
       ++result.duplicates;
@@ -61,7 +61,7 @@ IngestResult AggregatorCore::ingest(std::vector<mapping::Keyframe>& batch) {
 
   std::vector<mapping::LoopEdge> loops;
   for (std::size_t i : fresh) {
-    mapping::Keyframe keyframe = std::move(batch[i]);
+    Keyframe keyframe = std::move(batch[i]);
     for (Distribution& d : keyframe.distributions) {
       const Eigen::Matrix3d raw = d.cov;
       regularize_for_terms(regularizer(), raw, d.cov, d.shape_cov, d.shape_cov_inv);

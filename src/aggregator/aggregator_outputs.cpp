@@ -18,8 +18,8 @@ std::vector<StreamPoses> collect(const mapping::Mapper& mapper,
     s.stream = p.key.stream;
     s.anchor = p.frame;
     s.in_map_frame = !anchor.empty() && p.frame == anchor;
-    const mapping::Keyframe* kf = mapper.keyframe(p.key);
-    s.keyframes.push_back({p.key.id, kf ? kf->stamp_ns : 0, p.pose});
+    const Keyframe* kf = mapper.keyframe(p.key);
+    s.keyframes.push_back({p.key.id, kf ? kf->stamp : Stamp{}, p.pose});
   }
   std::vector<StreamPoses> out;
   out.reserve(by_stream.size());

@@ -60,7 +60,7 @@ std::vector<std::string> write_trajectories(const std::string& dir, const Stream
   std::vector<io::TimedPose> tum;
   for (const StreamPoses::Entry& e : poses.keyframes) {
     kitti.push_back(e.pose);
-    tum.push_back({static_cast<double>(e.stamp_ns) * 1e-9, e.pose});
+    tum.push_back({e.stamp.seconds(), e.pose});
   }
   const std::string stem = (std::filesystem::path(dir) / stream_file_stem(poses.stream)).string();
   io::write_kitti_poses(stem + "_kitti.txt", kitti);

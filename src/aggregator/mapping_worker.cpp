@@ -50,7 +50,7 @@ void MappingWorker::stop() {
 }
 
 void MappingWorker::run() {
-  std::vector<mapping::Keyframe> batch;
+  std::vector<Keyframe> batch;
   const std::size_t max_batch = static_cast<std::size_t>(config_.ingest.max_batch);
   for (;;) {
     const std::size_t n = queue_.pop_batch(batch, max_batch, kPopTimeout);
@@ -62,7 +62,7 @@ void MappingWorker::run() {
   publish(true);
 }
 
-void MappingWorker::process(std::vector<mapping::Keyframe>& batch) {
+void MappingWorker::process(std::vector<Keyframe>& batch) {
   const auto start = Clock::now();
   busy_since_ = start.time_since_epoch().count();
   IngestResult r;
@@ -116,7 +116,7 @@ void MappingWorker::process(std::vector<mapping::Keyframe>& batch) {
   status_.last_store_ms = r.store_ms;
   status_.last_mapper_ms = r.mapper_ms;
   if (r.optimization.ran) status_.last_optimize_ms = r.optimization.milliseconds;
-  for (const mapping::KeyframeKey& key : r.keys) {
+  for (const KeyframeKey& key : r.keys) {
     StreamCounts& c = status_.streams[key.stream];
     ++c.keyframes;
     c.max_id = std::max(c.max_id, key.id);

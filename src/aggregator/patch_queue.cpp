@@ -6,7 +6,7 @@ namespace litamin2::aggregator {
 
 PatchQueue::PatchQueue(std::size_t capacity) : capacity_(std::max<std::size_t>(capacity, 1)) {}
 
-bool PatchQueue::push(mapping::Keyframe keyframe) {
+bool PatchQueue::push(Keyframe keyframe) {
   std::unique_lock lock(mutex_);
   not_full_.wait(lock, [&] { return closed_ || items_.size() < capacity_; });
   if (closed_) return false;
@@ -18,7 +18,7 @@ bool PatchQueue::push(mapping::Keyframe keyframe) {
   return true;
 }
 
-std::size_t PatchQueue::pop_batch(std::vector<mapping::Keyframe>& out, std::size_t max,
+std::size_t PatchQueue::pop_batch(std::vector<Keyframe>& out, std::size_t max,
                                   std::chrono::milliseconds timeout) {
   std::unique_lock lock(mutex_);
   not_empty_.wait_for(lock, timeout, [&] { return closed_ || !items_.empty(); });

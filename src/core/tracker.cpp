@@ -82,4 +82,18 @@ FrameResult Tracker::process(const PointCloud& scan) {
   return frame;
 }
 
+Keyframe make_keyframe(const Tracker& tracker, const FrameResult& frame, KeyframeKey key,
+                       Stamp stamp, const Eigen::Isometry3d& sensor_in_base) {
+  const bool moved = !sensor_in_base.matrix().isIdentity(0.0);
+  Keyframe keyframe;
+  keyframe.key = std::move(key);
+  keyframe.stamp = stamp;
+  keyframe.odom_pose = moved ? Eigen::Isometry3d(sensor_in_base * frame.pose) : frame.pose;
+  keyframe.covariance =
+      moved ? transform_left_covariance(frame.covariance, sensor_in_base) : frame.covariance;
+  keyframe.voxel_size = tracker.map().voxel_size();
+  keyframe.distributions = tracker.last_distributions();
+  return keyframe;
+}
+
 }  // namespace litamin2

@@ -9,17 +9,6 @@ Eigen::Isometry3d base_pose(const Eigen::Isometry3d& sensor_pose,
   return extrinsic * sensor_pose * extrinsic.inverse();
 }
 
-Matrix6d base_covariance(const Matrix6d& sensor_covariance, const Eigen::Isometry3d& extrinsic) {
-  // exp(xi) moved by E: E exp(xi) T E^-1 = exp(Ad_E xi) (E T E^-1), with, for xi = (phi, tau),
-  // Ad_E = [[R, 0], [[t]x R, R]].
-  const Eigen::Matrix3d r = extrinsic.linear();
-  Matrix6d ad = Matrix6d::Zero();
-  ad.topLeftCorner<3, 3>() = r;
-  ad.bottomLeftCorner<3, 3>() = skew(extrinsic.translation()) * r;
-  ad.bottomRightCorner<3, 3>() = r;
-  return ad * sensor_covariance * ad.transpose();
-}
-
 StreamProcessor::StreamProcessor(StreamConfig config, ResultSink& sink, StreamStats& stats)
     : config_(std::move(config)),
       has_extrinsic_(!config_.extrinsic.matrix().isIdentity(0.0)),
@@ -35,16 +24,14 @@ void StreamProcessor::process(Frame& frame) {
   const Eigen::Isometry3d pose =
       has_extrinsic_ ? Eigen::Isometry3d(config_.extrinsic * sensor_pose * extrinsic_inverse_)
                      : sensor_pose;
-  const Matrix6d covariance =
-      has_extrinsic_ ? base_covariance(result.covariance, config_.extrinsic) : result.covariance;
+  const Matrix6d covariance = has_extrinsic_
+                                  ? transform_left_covariance(result.covariance, config_.extrinsic)
+                                  : result.covariance;
   sink_.publish_odometry(OdometryOutput{config_.id, frame.stamp, pose, covariance, result.keyframe,
                                         result.registered, frame.sequence});
   if (result.keyframe) {
-    const Eigen::Isometry3d keyframe_pose =
-        has_extrinsic_ ? Eigen::Isometry3d(config_.extrinsic * sensor_pose) : sensor_pose;
-    sink_.publish_keyframe(KeyframeOutput{config_.id, keyframes_, frame.stamp, keyframe_pose,
-                                          covariance, tracker_->map().voxel_size(),
-                                          tracker_->last_distributions()});
+    sink_.publish_keyframe(make_keyframe(*tracker_, result, KeyframeKey{config_.id, keyframes_},
+                                         frame.stamp, config_.extrinsic));
     ++keyframes_;
   }
   stats_.record_result(frame.arrival, std::chrono::steady_clock::now(), result.keyframe,

@@ -2,7 +2,8 @@
 
 #include "litamin2/dds/odometry_conversion.hpp"
 #include "litamin2/dds/pose_conversion.hpp"
-#include "litamin2/dds/topic_names.hpp"
+#include "litamin2/dds/time_conversion.hpp"
+#include "litamin2/service/topic_names.hpp"
 
 #include <Eigen/LU>
 #include <algorithm>
@@ -27,41 +28,19 @@ bool fail(std::string* error, std::string message) {
 
 }  // namespace
 
-std::int64_t stamp_to_ns(std::int32_t sec, std::uint32_t nanosec) {
-  return static_cast<std::int64_t>(sec) * kNsPerSecond + static_cast<std::int64_t>(nanosec);
-}
-
-void ns_to_stamp(std::int64_t ns, std::int32_t& sec, std::uint32_t& nanosec) {
-  std::int64_t s = ns / kNsPerSecond;
-  std::int64_t rem = ns % kNsPerSecond;
-  if (rem < 0) {
-    rem += kNsPerSecond;
-    --s;
-  }
-  sec = static_cast<std::int32_t>(s);
-  nanosec = static_cast<std::uint32_t>(rem);
-}
-
-litamin2::msg::MapPatch to_map_patch(const mapping::KeyframeKey& key, std::int64_t stamp_ns,
-                                     const std::string& frame_id, const Eigen::Isometry3d& pose,
-                                     const mapping::Matrix6d& left_covariance, double voxel_size,
-                                     const std::vector<Distribution>& distributions) {
+litamin2::msg::MapPatch to_map_patch(const Keyframe& keyframe, const std::string& frame_id) {
   litamin2::msg::MapPatch msg;
-  msg.stream_id(key.stream);
-  msg.keyframe_id(key.id);
-  std::int32_t sec = 0;
-  std::uint32_t nanosec = 0;
-  ns_to_stamp(stamp_ns, sec, nanosec);
-  msg.stamp().sec(sec);
-  msg.stamp().nanosec(nanosec);
+  msg.stream_id(keyframe.key.stream);
+  msg.keyframe_id(keyframe.key.id);
+  msg.stamp(to_time(keyframe.stamp));
   msg.frame_id(frame_id);
-  msg.pose(to_pose_msg(pose));
-  msg.covariance(ros_pose_covariance(left_covariance, pose));
-  msg.voxel_size(static_cast<float>(voxel_size));
+  msg.pose(to_pose_msg(keyframe.odom_pose));
+  msg.covariance(ros_pose_covariance(keyframe.covariance, keyframe.odom_pose));
+  msg.voxel_size(static_cast<float>(keyframe.voxel_size));
   auto& out = msg.distributions();
-  out.resize(distributions.size());
-  for (std::size_t i = 0; i < distributions.size(); ++i) {
-    const Distribution& d = distributions[i];
+  out.resize(keyframe.distributions.size());
+  for (std::size_t i = 0; i < keyframe.distributions.size(); ++i) {
+    const Distribution& d = keyframe.distributions[i];
     auto& v = out[i];
     v.mean({static_cast<float>(d.mean.x()), static_cast<float>(d.mean.y()),
             static_cast<float>(d.mean.z())});
@@ -73,15 +52,8 @@ litamin2::msg::MapPatch to_map_patch(const mapping::KeyframeKey& key, std::int64
   return msg;
 }
 
-litamin2::msg::MapPatch to_map_patch(const mapping::Keyframe& keyframe,
-                                     const std::string& frame_id) {
-  return to_map_patch(keyframe.key, keyframe.stamp_ns, frame_id, keyframe.odom_pose,
-                      keyframe.covariance, keyframe.voxel_size, keyframe.distributions);
-}
-
-std::optional<mapping::Keyframe> from_map_patch(const litamin2::msg::MapPatch& msg,
-                                                std::string* error) {
-  if (const auto why = stream_id_error(msg.stream_id())) {
+std::optional<Keyframe> from_map_patch(const litamin2::msg::MapPatch& msg, std::string* error) {
+  if (const auto why = service::stream_id_error(msg.stream_id())) {
     fail(error, "stream id '" + msg.stream_id() + "': " + *why);
     return std::nullopt;
   }
@@ -105,10 +77,10 @@ std::optional<mapping::Keyframe> from_map_patch(const litamin2::msg::MapPatch& m
     return std::nullopt;
   }
 
-  mapping::Keyframe kf;
+  Keyframe kf;
   kf.key.stream = msg.stream_id();
   kf.key.id = msg.keyframe_id();
-  kf.stamp_ns = stamp_to_ns(msg.stamp().sec(), msg.stamp().nanosec());
+  kf.stamp = to_stamp(msg.stamp());
   kf.odom_pose = from_pose_msg(msg.pose());
   kf.covariance = left_covariance_from_ros(msg.covariance(), kf.odom_pose);
   kf.voxel_size = msg.voxel_size();

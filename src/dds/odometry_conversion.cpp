@@ -60,10 +60,10 @@ Matrix6d left_covariance_from_ros(const std::array<double, 36>& ros_covariance,
 }
 
 nav_msgs::msg::Odometry to_odometry(const Eigen::Isometry3d& pose, const Matrix6d& left_covariance,
-                                    double stamp_seconds, const std::string& frame_id,
+                                    Stamp stamp, const std::string& frame_id,
                                     const std::string& child_frame_id) {
   nav_msgs::msg::Odometry msg;
-  msg.header().stamp(to_time(stamp_seconds));
+  msg.header().stamp(to_time(stamp));
   msg.header().frame_id(frame_id);
   msg.child_frame_id(child_frame_id);
   msg.pose().pose(to_pose_msg(pose));
@@ -76,7 +76,7 @@ nav_msgs::msg::Odometry to_odometry(const Eigen::Isometry3d& pose, const Matrix6
 
 OdometrySample from_odometry(const nav_msgs::msg::Odometry& msg) {
   OdometrySample sample;
-  sample.stamp = to_seconds(msg.header().stamp());
+  sample.stamp = to_stamp(msg.header().stamp());
   sample.frame_id = msg.header().frame_id();
   sample.child_frame_id = msg.child_frame_id();
   sample.pose = from_pose_msg(msg.pose().pose());

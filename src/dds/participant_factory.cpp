@@ -39,20 +39,6 @@ bool ends_with(std::string_view text, std::string_view suffix) {
 
 }  // namespace
 
-const char* to_string(TransportProfile profile) {
-  switch (profile) {
-    case TransportProfile::kLoopback:
-      return "loopback";
-    case TransportProfile::kShm:
-      return "shm";
-    case TransportProfile::kDefault:
-      return "default";
-    case TransportProfile::kXml:
-      return "xml";
-  }
-  return "unknown";
-}
-
 std::optional<ParticipantConfig> parse_participant_profile(std::string_view text,
                                                            std::string* error) {
   ParticipantConfig config;

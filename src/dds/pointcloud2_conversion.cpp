@@ -129,6 +129,8 @@ const char* to_string(CloudError error) {
       return "data_size_mismatch";
     case CloudError::kTooManyPoints:
       return "too_many_points";
+    case CloudError::kBadStamp:
+      return "bad_stamp";
   }
   return "unknown";
 }
@@ -155,6 +157,10 @@ CloudError from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
   // Each factor is < 2^32, so these products cannot overflow 64 bits.
   const std::uint64_t total = width * height;
   out.total_points = static_cast<std::size_t>(total);
+  if (msg.header().stamp().nanosec() >= 1'000'000'000u)
+    return fail(
+        out, CloudError::kBadStamp,
+        "header stamp nanosec " + std::to_string(msg.header().stamp().nanosec()) + " >= 1e9");
 
   // Fields: x, y, z required (FLOAT32/FLOAT64), intensity optional (any numeric type).
   std::array<FieldSpec, 4> specs{{{"x"}, {"y"}, {"z"}, {"intensity"}}};
@@ -280,10 +286,10 @@ CloudError from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
   return CloudError::kNone;
 }
 
-sensor_msgs::msg::PointCloud2 to_pointcloud2(const PointCloud& cloud, double stamp_seconds,
+sensor_msgs::msg::PointCloud2 to_pointcloud2(const PointCloud& cloud, Stamp stamp,
                                              const std::string& frame_id) {
   sensor_msgs::msg::PointCloud2 msg;
-  msg.header().stamp(to_time(stamp_seconds));
+  msg.header().stamp(to_time(stamp));
   msg.header().frame_id(frame_id);
   const char* names[4] = {"x", "y", "z", "intensity"};
   std::vector<sensor_msgs::msg::PointField> fields(4);

@@ -1,43 +1,47 @@
 #include "litamin2/dds/time_conversion.hpp"
 
-#include <cmath>
+#include <chrono>
 #include <cstdint>
 #include <limits>
 
 namespace litamin2::dds {
+namespace {
 
-double to_seconds(const builtin_interfaces::msg::Time& time) {
-  return static_cast<double>(time.sec()) + static_cast<double>(time.nanosec()) * 1e-9;
+constexpr std::int64_t kNsPerSecond = 1'000'000'000;
+
+}  // namespace
+
+Stamp to_stamp(const builtin_interfaces::msg::Time& time) {
+  return Stamp{static_cast<std::int64_t>(time.sec()) * kNsPerSecond +
+               static_cast<std::int64_t>(time.nanosec())};
 }
 
-builtin_interfaces::msg::Time to_time(double seconds) {
+builtin_interfaces::msg::Time to_time(Stamp stamp) {
   builtin_interfaces::msg::Time time;
-  if (!std::isfinite(seconds)) return time;
-  constexpr double kMin = static_cast<double>(std::numeric_limits<std::int32_t>::min());
-  constexpr double kMax = static_cast<double>(std::numeric_limits<std::int32_t>::max());
-  if (seconds <= kMin) {
-    time.sec(std::numeric_limits<std::int32_t>::min());
-    return time;
+  std::int64_t sec = stamp.nanoseconds / kNsPerSecond;
+  std::int64_t nanosec = stamp.nanoseconds % kNsPerSecond;
+  if (nanosec < 0) {
+    nanosec += kNsPerSecond;
+    --sec;
   }
-  if (seconds >= kMax + 1.0) {
-    time.sec(std::numeric_limits<std::int32_t>::max());
-    time.nanosec(999'999'999u);
-    return time;
+  constexpr std::int64_t kMin = std::numeric_limits<std::int32_t>::min();
+  constexpr std::int64_t kMax = std::numeric_limits<std::int32_t>::max();
+  if (sec < kMin) {
+    sec = kMin;
+    nanosec = 0;
+  } else if (sec > kMax) {
+    sec = kMax;
+    nanosec = kNsPerSecond - 1;
   }
-  double whole = std::floor(seconds);
-  auto nanos = static_cast<std::int64_t>(std::llround((seconds - whole) * 1e9));
-  if (nanos >= 1'000'000'000) {
-    nanos -= 1'000'000'000;
-    whole += 1.0;
-  }
-  if (whole > kMax) {
-    time.sec(std::numeric_limits<std::int32_t>::max());
-    time.nanosec(999'999'999u);
-    return time;
-  }
-  time.sec(static_cast<std::int32_t>(whole));
-  time.nanosec(static_cast<std::uint32_t>(nanos));
+  time.sec(static_cast<std::int32_t>(sec));
+  time.nanosec(static_cast<std::uint32_t>(nanosec));
   return time;
+}
+
+Stamp wall_clock_now() {
+  return Stamp{std::chrono::duration_cast<std::chrono::nanoseconds>(
+                   std::chrono::system_clock::now().time_since_epoch())
+                   .count()};
 }
 
 }  // namespace litamin2::dds

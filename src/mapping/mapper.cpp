@@ -1,6 +1,5 @@
 #include "litamin2/mapping/mapper.hpp"
 
-#include "litamin2/core/config_error.hpp"
 #include "litamin2/core/stopwatch.hpp"
 #include "litamin2/core/voxel_map.hpp"
 #include "litamin2/mapping/distribution_moments.hpp"
@@ -20,18 +19,6 @@ namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
 
-void validate(const MapperConfig& c) {
-  auto require = [](bool ok, const std::string& what) {
-    if (!ok) throw ConfigError("mapper config: " + what);
-  };
-  require(c.place.rings >= 2 && c.place.sectors >= 4, "place_recognition grid too small");
-  require(c.place.max_range > 0.0, "place_recognition.max_range must be positive");
-  require(c.place.ring_key_candidates >= 1, "place_recognition.ring_key_candidates must be >= 1");
-  require(c.verification.min_fitness >= 0.0 && c.verification.min_fitness <= 1.0,
-          "verification.min_fitness must be in [0, 1]");
-  require(c.map_voxel_size > 0.0, "map_voxel_size must be positive");
-}
-
 }  // namespace
 
 struct Mapper::Impl {
@@ -42,7 +29,7 @@ struct Mapper::Impl {
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   };
   struct Stream {
-    /// The stream's canonically first keyframe (mapping::canonical_before: stamp, then
+    /// The stream's canonically first keyframe (canonical_before: stamp, then
     /// stream, then id). Of two groups that meet, the one whose anchor's first keyframe comes
     /// first keeps its frame; so a group's anchor, and the map's (the stream of the first
     /// keyframe of all), do not depend on the order in which keyframes arrived, and a mapper
@@ -406,9 +393,9 @@ AddStatus Mapper::add_keyframe(Keyframe keyframe, std::vector<LoopEdge>* new_loo
   auto [stream_it, new_stream] = m.streams.try_emplace(name);
   Impl::Stream& stream = stream_it->second;
   if (new_stream) stream.parent = name;
-  if (new_stream || std::tie(keyframe.stamp_ns, keyframe.key.id) <
+  if (new_stream || std::tie(keyframe.stamp.nanoseconds, keyframe.key.id) <
                         std::tie(stream.first_stamp_ns, stream.first_id)) {
-    stream.first_stamp_ns = keyframe.stamp_ns;
+    stream.first_stamp_ns = keyframe.stamp.nanoseconds;
     stream.first_id = keyframe.key.id;
   }
   const KeyframeKey key = keyframe.key;

@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 namespace {
 
 /// 'stream'/id, for messages.
-std::string describe(const mapping::KeyframeKey& key) {
+std::string describe(const KeyframeKey& key) {
   return "'" + key.stream + "'/" + std::to_string(key.id);
 }
 
@@ -45,7 +45,7 @@ struct KeyframeStore::Impl {
   }
 
   /// Inserts one keyframe in the current transaction (or its own). True if it was new.
-  bool insert(const mapping::Keyframe& kf) {
+  bool insert(const Keyframe& kf) {
     const std::string what = "cannot store keyframe " + describe(kf.key);
     if (kf.key.stream.empty()) throw StoreError(path, what + ": empty stream name");
     if (kf.key.id > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
@@ -65,7 +65,7 @@ struct KeyframeStore::Impl {
     ResetOnExit reset{s};
     s.bind_text(1, kf.key.stream);
     s.bind(2, static_cast<std::int64_t>(kf.key.id));
-    s.bind(3, kf.stamp_ns);
+    s.bind(3, kf.stamp.nanoseconds);
     s.bind(4, kf.voxel_size);
     s.bind_blob(5, pose);
     s.bind_blob(6, covariance);
@@ -155,14 +155,13 @@ const std::string& KeyframeStore::path() const {
   return impl().path;
 }
 
-bool KeyframeStore::insert_keyframe(const mapping::Keyframe& keyframe) {
+bool KeyframeStore::insert_keyframe(const Keyframe& keyframe) {
   Impl& im = impl();
   im.require_writable("insert_keyframe");
   return im.insert(keyframe);
 }
 
-std::size_t KeyframeStore::insert_keyframes(
-    const std::vector<const mapping::Keyframe*>& keyframes) {
+std::size_t KeyframeStore::insert_keyframes(const std::vector<const Keyframe*>& keyframes) {
   Impl& im = impl();
   im.require_writable("insert_keyframes");
   if (keyframes.empty()) return 0;
@@ -178,22 +177,21 @@ std::size_t KeyframeStore::insert_keyframes(
   return inserted;
 }
 
-std::vector<mapping::Keyframe> KeyframeStore::load_keyframes(
-    const RegularizerConfig& regularizer) const {
+std::vector<Keyframe> KeyframeStore::load_keyframes(const RegularizerConfig& regularizer) const {
   Impl& im = impl();
   // The index on (stamp_ns, stream, id) gives the canonical order: SQLite compares TEXT with
   // memcmp, as std::string does, and ids are stored non-negative.
   Statement s(im.db.get(), im.path,
               "SELECT stream, id, stamp_ns, voxel_size, pose, covariance, distributions "
               "FROM keyframes ORDER BY stamp_ns, stream, id");
-  std::vector<mapping::Keyframe> out;
+  std::vector<Keyframe> out;
   while (s.step("cannot read the keyframes")) {
-    mapping::Keyframe kf;
+    Keyframe kf;
     sqlite3_stmt* row = s.get();
     try {
       kf.key.stream = column_text(row, 0, "stream");
       kf.key.id = column_id(row, 1, "id");
-      kf.stamp_ns = column_int(row, 2, "stamp_ns");
+      kf.stamp.nanoseconds = column_int(row, 2, "stamp_ns");
       kf.voxel_size = column_real(row, 3, "voxel_size");
       const auto pose = column_blob(row, 4, "pose");
       kf.odom_pose = decode_pose(pose.first, pose.second);
@@ -217,7 +215,7 @@ std::size_t KeyframeStore::keyframe_count() const {
   return static_cast<std::size_t>(sqlite3_column_int64(im.count->get(), 0));
 }
 
-bool KeyframeStore::contains(const mapping::KeyframeKey& key) const {
+bool KeyframeStore::contains(const KeyframeKey& key) const {
   Impl& im = impl();
   if (key.id > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) return false;
   ResetOnExit reset{*im.contains};
@@ -236,7 +234,7 @@ void KeyframeStore::replace_loop_edges(const std::vector<mapping::LoopEdge>& edg
               "relative, information) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)");
   for (const mapping::LoopEdge& e : edges) {
     const std::string what = "cannot store loop edge " + describe(e.from) + " -> " + describe(e.to);
-    for (const mapping::KeyframeKey* key : {&e.from, &e.to}) {
+    for (const KeyframeKey* key : {&e.from, &e.to}) {
       if (key->id > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
         throw StoreError(im.path, what + ": id exceeds the largest storable id 2^63-1");
       }

@@ -84,16 +84,16 @@ Eigen::Isometry3d decode_pose(const void* data, std::size_t size) {
   return pose;
 }
 
-std::string encode_matrix6(const mapping::Matrix6d& m) {
+std::string encode_matrix6(const Matrix6d& m) {
   std::string out(kMatrix6Bytes, '\0');
   for (int i = 0; i < 36; ++i) put_f64(bytes(out) + 8 * i, m.data()[i]);
   return out;
 }
 
-mapping::Matrix6d decode_matrix6(const void* data, std::size_t size) {
+Matrix6d decode_matrix6(const void* data, std::size_t size) {
   check_size("6x6 matrix", size, kMatrix6Bytes);
   const auto* p = static_cast<const unsigned char*>(data);
-  mapping::Matrix6d m;
+  Matrix6d m;
   for (int i = 0; i < 36; ++i) m.data()[i] = get_f64(p + 8 * i);
   return m;
 }

@@ -29,9 +29,9 @@
 #include "litamin2/dds/pointcloud2_conversion.hpp"
 #include "litamin2/dds/qos.hpp"
 #include "litamin2/dds/time_conversion.hpp"
-#include "litamin2/dds/topic_names.hpp"
 #include "litamin2/io/kitti_bin.hpp"
 #include "litamin2/io/kitti_sequence.hpp"
+#include "litamin2/service/topic_names.hpp"
 #include "sensor_msgs/msg/PointCloud2PubSubTypes.h"
 
 namespace fdds = eprosima::fastdds::dds;
@@ -93,8 +93,8 @@ int subscribe(std::uint32_t domain, double timeout_s, const std::string& ready_f
     StreamCheck s;
     s.id = spec.substr(0, eq);
     s.sequence = std::make_unique<litamin2::io::ScanSequence>(spec.substr(eq + 1));
-    auto* topic = participant->create_topic(litamin2::dds::points_topic(s.id), type.get_type_name(),
-                                            fdds::TOPIC_QOS_DEFAULT);
+    auto* topic = participant->create_topic(litamin2::service::points_topic(s.id),
+                                            type.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
     s.reader = subscriber->create_datareader(
         topic,
         litamin2::dds::points_reader_qos(true, static_cast<std::int32_t>(s.sequence->size() + 10)));
@@ -137,7 +137,8 @@ int subscribe(std::uint32_t domain, double timeout_s, const std::string& ready_f
       const auto& msg = s.received[k];
       const auto expected = s.sequence->load(k);
       const auto got = litamin2::dds::from_pointcloud2(msg);
-      const auto stamp = litamin2::dds::to_time(s.sequence->timestamp(k));
+      const auto stamp =
+          litamin2::dds::to_time(litamin2::Stamp::from_seconds(s.sequence->timestamp(k)));
       std::string problem;
       if (!got.ok()) {
         problem = std::string("invalid PointCloud2: ") + got.message;

@@ -4,7 +4,7 @@
 // memory; no multicast), polling the node until its status meets a condition, a per-process
 // DDS domain, and the process's memory from /proc/self/status.
 
-#include "litamin2/daemon/daemon_config.hpp"
+#include "litamin2/config/daemon_config_yaml.hpp"
 #include "litamin2/daemon/dds/daemon_node.hpp"
 #include "litamin2/dds/participant_factory.hpp"
 #include "litamin2/dds/qos.hpp"

@@ -12,8 +12,8 @@ using namespace litamin2::aggregator;
 
 namespace {
 
-mapping::Keyframe keyframe(std::uint64_t id) {
-  mapping::Keyframe kf;
+Keyframe keyframe(std::uint64_t id) {
+  Keyframe kf;
   kf.key = {"s", id};
   return kf;
 }
@@ -23,7 +23,7 @@ mapping::Keyframe keyframe(std::uint64_t id) {
 TEST(PatchQueue, BatchesInOrder) {
   PatchQueue q(10);
   for (std::uint64_t i = 0; i < 5; ++i) ASSERT_TRUE(q.push(keyframe(i)));
-  std::vector<mapping::Keyframe> out;
+  std::vector<Keyframe> out;
   EXPECT_EQ(q.pop_batch(out, 3, std::chrono::milliseconds(0)), 3u);
   EXPECT_EQ(q.pop_batch(out, 3, std::chrono::milliseconds(0)), 2u);
   ASSERT_EQ(out.size(), 5u);
@@ -41,7 +41,7 @@ TEST(PatchQueue, FullQueueWaitsInsteadOfDropping) {
       ++pushed;
     }
   });
-  std::vector<mapping::Keyframe> out;
+  std::vector<Keyframe> out;
   while (out.size() < 100) {
     q.pop_batch(out, 7, std::chrono::milliseconds(100));
     EXPECT_LE(q.size(), 2u);
@@ -58,7 +58,7 @@ TEST(PatchQueue, CloseWakesAndDrains) {
   std::this_thread::sleep_for(std::chrono::milliseconds(20));
   q.close();
   producer.join();
-  std::vector<mapping::Keyframe> out;
+  std::vector<Keyframe> out;
   EXPECT_EQ(q.pop_batch(out, 10, std::chrono::seconds(5)), 1u);
   EXPECT_EQ(q.pop_batch(out, 10, std::chrono::seconds(5)), 0u);  // closed and empty: at once
   EXPECT_TRUE(q.closed());

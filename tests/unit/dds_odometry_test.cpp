@@ -99,7 +99,7 @@ TEST(DdsOdometry, CovarianceRoundTrip) {
 TEST(DdsOdometry, MessageRoundTrip) {
   const Eigen::Isometry3d pose = some_pose();
   const Matrix6d left = random_covariance(11);
-  const auto msg = to_odometry(pose, left, 1234.5, "car1/odom", "car1");
+  const auto msg = to_odometry(pose, left, Stamp::from_seconds(1234.5), "car1/odom", "car1");
   EXPECT_EQ(msg.header().frame_id(), "car1/odom");
   EXPECT_EQ(msg.child_frame_id(), "car1");
   EXPECT_EQ(msg.header().stamp().sec(), 1234);
@@ -108,7 +108,7 @@ TEST(DdsOdometry, MessageRoundTrip) {
   EXPECT_DOUBLE_EQ(msg.twist().covariance()[0], -1.0);
   EXPECT_DOUBLE_EQ(msg.twist().covariance()[35], -1.0);
   const OdometrySample sample = from_odometry(msg);
-  EXPECT_DOUBLE_EQ(sample.stamp, 1234.5);
+  EXPECT_EQ(sample.stamp.nanoseconds, 1'234'500'000'000);
   EXPECT_EQ(sample.frame_id, "car1/odom");
   EXPECT_EQ(sample.child_frame_id, "car1");
   EXPECT_TRUE(sample.pose.isApprox(pose, 1e-12));
@@ -119,7 +119,7 @@ TEST(DdsOdometry, MessageRoundTrip) {
 }
 
 TEST(DdsOdometry, ZeroCovarianceStaysZero) {
-  const auto msg = to_odometry(some_pose(), Matrix6d::Zero(), 0.0, "odom", "base");
+  const auto msg = to_odometry(some_pose(), Matrix6d::Zero(), Stamp{}, "odom", "base");
   for (double v : msg.pose().covariance()) EXPECT_EQ(v, 0.0);
 }
 

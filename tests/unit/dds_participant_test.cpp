@@ -20,8 +20,8 @@
 #include "litamin2/dds/participant_factory.hpp"
 #include "litamin2/dds/pointcloud2_conversion.hpp"
 #include "litamin2/dds/qos.hpp"
-#include "litamin2/dds/topic_names.hpp"
 #include "litamin2/msg/MapPatchPubSubTypes.h"
+#include "litamin2/service/topic_names.hpp"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 #include "sensor_msgs/msg/PointCloud2PubSubTypes.h"
 
@@ -129,7 +129,7 @@ void round_trip(const ParticipantConfig& writer_config, const ParticipantConfig&
   ParticipantPtr sub_participant = create_participant(reader_config, &error);
   ASSERT_TRUE(sub_participant) << error;
 
-  const std::string topic_name = points_topic("test_stream");
+  const std::string topic_name = service::points_topic("test_stream");
   fdds::TypeSupport type(new sensor_msgs::msg::PointCloud2PubSubType());
   ASSERT_EQ(type.register_type(pub_participant.get()), ReturnCode_t::RETCODE_OK);
   ASSERT_EQ(type.register_type(sub_participant.get()), ReturnCode_t::RETCODE_OK);
@@ -158,7 +158,7 @@ void round_trip(const ParticipantConfig& writer_config, const ParticipantConfig&
     cloud.points.emplace_back(0.001f * static_cast<float>(i), std::sin(0.01f * i), 1.5f);
     cloud.intensities.push_back(static_cast<float>(i % 256));
   }
-  auto msg = to_pointcloud2(cloud, 42.25, "test_stream");
+  auto msg = to_pointcloud2(cloud, Stamp::from_seconds(42.25), "test_stream");
   ASSERT_TRUE(writer->write(&msg));
 
   sensor_msgs::msg::PointCloud2 received;

@@ -37,7 +37,7 @@ std::vector<Keyframe> drive(const std::string& stream, const std::vector<Eigen::
     if (i > 0) odom = odom * (truth[i - 1].inverse() * truth[i]) * planar_pose(0, 0, drift_deg);
     Keyframe kf;
     kf.key = {stream, i};
-    kf.stamp_ns = static_cast<std::int64_t>(i) * 100000000;
+    kf.stamp.nanoseconds = static_cast<std::int64_t>(i) * 100000000;
     kf.odom_pose = odom;
     kf.voxel_size = 3.0;
     kf.distributions =
@@ -128,7 +128,7 @@ class TwoVehicles : public ::testing::Test {
     truth_b.assign(truth.begin() + 21, truth.end());
     a = drive("a", truth_a, 0.0, 1);
     b = drive("b", truth_b, 0.0, 2);
-    for (auto& kf : b) kf.stamp_ns += 1000000000;
+    for (auto& kf : b) kf.stamp.nanoseconds += 1000000000;
   }
 
   /// Checks that both vehicles end in a's frame, which is the map's, each keyframe within

@@ -21,8 +21,6 @@ namespace {
 namespace fs = std::filesystem;
 using namespace litamin2;
 using namespace litamin2::store;
-using mapping::Keyframe;
-using mapping::KeyframeKey;
 using mapping::LoopEdge;
 
 /// A fresh folder per test (and per process, so concurrent runs do not collide).
@@ -60,9 +58,9 @@ Keyframe make_keyframe(const std::string& stream, std::uint64_t id, std::int64_t
   std::normal_distribution<double> n(0.0, 1.0);
   Keyframe kf;
   kf.key = {stream, id};
-  kf.stamp_ns = stamp_ns;
+  kf.stamp.nanoseconds = stamp_ns;
   kf.odom_pose = random_pose(rng);
-  const mapping::Matrix6d a = mapping::Matrix6d::Random();
+  const Matrix6d a = Matrix6d::Random();
   kf.covariance = a * a.transpose() * 1e-4;
   kf.voxel_size = 1.0;
   for (int i = 0; i < distributions; ++i) {
@@ -120,7 +118,7 @@ void raw_sql(const fs::path& path, const std::string& sql) {
 
 void expect_same_keyframe_header(const Keyframe& a, const Keyframe& b) {
   EXPECT_EQ(a.key, b.key);
-  EXPECT_EQ(a.stamp_ns, b.stamp_ns);
+  EXPECT_EQ(a.stamp.nanoseconds, b.stamp.nanoseconds);
   EXPECT_EQ(a.odom_pose.matrix(), b.odom_pose.matrix());
   EXPECT_EQ(a.covariance, b.covariance);
   EXPECT_EQ(a.voxel_size, b.voxel_size);
@@ -168,7 +166,7 @@ TEST(KeyframeStore, DuplicateInsertsAreIgnoredAndKeepTheFirstKeyframe) {
   KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::CreateIfMissing);
   const Keyframe a = make_keyframe("s", 0, 100, 10);
   Keyframe a_again = a;
-  a_again.stamp_ns = 999;
+  a_again.stamp.nanoseconds = 999;
   EXPECT_TRUE(store.insert_keyframe(a));
   EXPECT_FALSE(store.insert_keyframe(a));
   EXPECT_FALSE(store.insert_keyframe(a_again));
@@ -181,7 +179,7 @@ TEST(KeyframeStore, DuplicateInsertsAreIgnoredAndKeepTheFirstKeyframe) {
   const std::vector<Keyframe> loaded = store.load_keyframes();
   ASSERT_EQ(loaded.size(), 3u);
   EXPECT_EQ(loaded[0].key, a.key);
-  EXPECT_EQ(loaded[0].stamp_ns, 100);
+  EXPECT_EQ(loaded[0].stamp.nanoseconds, 100);
 }
 
 TEST(KeyframeStore, OutOfOrderInsertsLoadInCanonicalOrder) {
@@ -203,12 +201,12 @@ TEST(KeyframeStore, OutOfOrderInsertsLoadInCanonicalOrder) {
       EXPECT_EQ(store.insert_keyframes({&shuffled[i]}), 1u);
     }
   }
-  std::sort(keyframes.begin(), keyframes.end(), mapping::canonical_before);
+  std::sort(keyframes.begin(), keyframes.end(), canonical_before);
   const std::vector<Keyframe> loaded = store.load_keyframes();
   ASSERT_EQ(loaded.size(), keyframes.size());
   for (std::size_t i = 0; i < loaded.size(); ++i) {
     EXPECT_EQ(loaded[i].key, keyframes[i].key) << i;
-    EXPECT_EQ(loaded[i].stamp_ns, keyframes[i].stamp_ns) << i;
+    EXPECT_EQ(loaded[i].stamp.nanoseconds, keyframes[i].stamp.nanoseconds) << i;
   }
 }
 
@@ -227,7 +225,7 @@ LoopEdge make_edge(const KeyframeKey& from, const KeyframeKey& to, std::uint32_t
   e.from = from;
   e.to = to;
   e.relative = random_pose(rng);
-  const mapping::Matrix6d a = mapping::Matrix6d::Random();
+  const Matrix6d a = Matrix6d::Random();
   e.information = a * a.transpose();
   e.fitness = 0.5 + 0.01 * seed;
   e.rmse = 0.1 * seed;

@@ -58,7 +58,7 @@ TEST(StoreRecordCodec, WrongSizesAndValuesAreRejected) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::memcpy(nan_pose.data(), &nan, sizeof(double));
   EXPECT_THROW(decode_pose(nan_pose.data(), nan_pose.size()), std::invalid_argument);
-  const std::string m = encode_matrix6(mapping::Matrix6d::Identity());
+  const std::string m = encode_matrix6(Matrix6d::Identity());
   EXPECT_THROW(decode_matrix6(m.data(), m.size() + 1), std::invalid_argument);
   const std::string d = encode_distributions(std::vector<Distribution>(2));
   EXPECT_THROW(decode_distributions(d.data(), d.size() - 1, {}), std::invalid_argument);
@@ -73,7 +73,7 @@ TEST(StoreRecordCodec, PoseAndMatrixRoundTripExactly) {
   pose.translation() << 1.0 / 3.0, -2e5, 7.125;
   const std::string p = encode_pose(pose);
   EXPECT_EQ(decode_pose(p.data(), p.size()).matrix(), pose.matrix());
-  const mapping::Matrix6d info = mapping::Matrix6d::Random();
+  const Matrix6d info = Matrix6d::Random();
   const std::string m = encode_matrix6(info);
   EXPECT_EQ(decode_matrix6(m.data(), m.size()), info);
 }

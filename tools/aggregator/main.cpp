@@ -4,13 +4,14 @@
 // summary and a status. Runs under systemd as Type=notify (READY, WATCHDOG, STOPPING, STATUS).
 // `litamin2-aggregator export` writes a store's map (PLY) and trajectories (KITTI, TUM).
 
-#include "litamin2/aggregator/aggregator_config.hpp"
 #include "litamin2/aggregator/dds/aggregator_node.hpp"
 #include "litamin2/aggregator/map_export.hpp"
-#include "litamin2/daemon/logging.hpp"
-#include "litamin2/daemon/service_loop.hpp"
+#include "litamin2/config/aggregator_config_yaml.hpp"
+#include "litamin2/core/config_error.hpp"
 #include "litamin2/io/io_error.hpp"
 #include "litamin2/mapping/mapper_config.hpp"
+#include "litamin2/service/logging.hpp"
+#include "litamin2/service/service_loop.hpp"
 #include "litamin2/store/store_error.hpp"
 #include "litamin2/version.hpp"
 
@@ -29,7 +30,7 @@ constexpr std::chrono::milliseconds kLoopPeriod(50);
 
 std::string describe(const AggregatorConfig& c) {
   return fmt::format("domain {}, profile {}, store {}, patches from {}", c.dds.domain,
-                     daemon::to_string(c.dds.profile), c.store.path, c.topics.map_patches);
+                     service::to_string(c.dds.profile), c.store.path, c.topics.map_patches);
 }
 
 /// Progress of a long rebuild on stderr, about every 10 %.
@@ -73,7 +74,7 @@ int run_export(const std::string& store_path, const std::string& map_ply,
 
 int main(int argc, char** argv) {
   // Before any thread exists, so that every thread inherits the blocked SIGTERM/SIGINT.
-  daemon::ShutdownSignals signals;
+  service::ShutdownSignals signals;
 
   CLI::App app{"litamin2-aggregator: keyframe store, loop closure and global map of every stream"};
   std::string config_file = "/etc/litamin2/litamin2-aggregator.yaml";
@@ -116,35 +117,35 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "<3>error: invalid configuration: %s\n", e.what());
     return 2;
   }
-  daemon::setup_logging(config.log_level);
+  service::setup_logging(config.log_level);
   if (check_config) {
     std::cout << config_file << ": ok (" << describe(config) << ")\n";
     return 0;
   }
   spdlog::info("litamin2-aggregator {} starting: {}", litamin2::version(), describe(config));
 
-  daemon::ServiceLoop service(config.watchdog.enabled);
+  service::ServiceLoop service_loop(config.watchdog.enabled);
   int exit_code = 0;
   try {
-    service.notifier().status("recovering the store");
+    service_loop.notifier().status("recovering the store");
     AggregatorNode node(config, progress_printer("recovering"));
-    service.notifier().ready();
-    service.notifier().status(node.summary());
-    daemon::ServiceLoop::Hooks hooks;
-    hooks.poll = [&](daemon::ServiceLoop::Clock::time_point now) {
+    service_loop.notifier().ready();
+    service_loop.notifier().status(node.summary());
+    service::ServiceLoop::Hooks hooks;
+    hooks.poll = [&](service::ServiceLoop::Clock::time_point now) {
       node.poll(now);
       if (!node.failed()) return true;
       spdlog::error("the store failed: exiting so that the service restarts");
       exit_code = 1;
       return false;
     };
-    hooks.healthy = [&](daemon::ServiceLoop::Clock::time_point now) { return node.healthy(now); };
-    hooks.summary = [&](daemon::ServiceLoop::Clock::time_point) { return node.summary(); };
+    hooks.healthy = [&](service::ServiceLoop::Clock::time_point now) { return node.healthy(now); };
+    hooks.summary = [&](service::ServiceLoop::Clock::time_point) { return node.summary(); };
     hooks.stall_message =
         fmt::format("a batch has been in processing for over {} s: withholding the watchdog",
                     config.watchdog.stall_timeout_s);
-    service.run(signals, hooks, kLoopPeriod);
-    service.notifier().stopping();
+    service_loop.run(signals, hooks, kLoopPeriod);
+    service_loop.notifier().stopping();
     node.shutdown();
   } catch (const store::StoreError& e) {
     spdlog::error("cannot use the store: {}", e.what());

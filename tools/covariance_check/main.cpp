@@ -7,8 +7,8 @@
 // standard-deviation factor that makes it so, sqrt(mean / 6), is the calibrated
 // pose_graph.tracker_covariance_scale. The distance model's sigmas are checked the same way.
 
+#include "litamin2/config/tracker_config_yaml.hpp"
 #include "litamin2/core/tracker.hpp"
-#include "litamin2/core/tracker_config.hpp"
 #include "litamin2/io/kitti_sequence.hpp"
 #include "litamin2/mapping/mapper_config.hpp"
 #include "litamin2/mapping/odometry_covariance.hpp"
@@ -29,7 +29,7 @@ using Vector6d = Eigen::Matrix<double, 6, 1>;
 
 struct Sample {
   Eigen::Isometry3d estimate, truth;
-  mapping::Matrix6d covariance;
+  Matrix6d covariance;
 };
 
 void report(const char* name, std::vector<double> nees) {
@@ -87,8 +87,7 @@ int main(int argc, char** argv) {
       e.head<3>() = truth.translation() - estimate.translation();
       const Eigen::AngleAxisd rotation(estimate.linear().transpose() * truth.linear());
       e.tail<3>() = rotation.angle() * rotation.axis();
-      const mapping::Matrix6d c =
-          mapping::relative_pose_covariance(a.estimate, b.estimate, b.covariance);
+      const Matrix6d c = mapping::relative_pose_covariance(a.estimate, b.estimate, b.covariance);
       tracker_nees.push_back(e.dot(c.ldlt().solve(e)));
       const double d = estimate.translation().norm();
       const double st = std::max(graph.odometry_translation_sigma_min,

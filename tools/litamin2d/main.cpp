@@ -3,10 +3,11 @@
 // nav_msgs/Odometry on rt/<stream>/odom, map patches and a status (DiagnosticArray).
 // Runs under systemd as Type=notify (READY, WATCHDOG, STOPPING, STATUS).
 
-#include "litamin2/daemon/daemon_config.hpp"
+#include "litamin2/config/daemon_config_yaml.hpp"
+#include "litamin2/core/config_error.hpp"
 #include "litamin2/daemon/dds/daemon_node.hpp"
-#include "litamin2/daemon/logging.hpp"
-#include "litamin2/daemon/service_loop.hpp"
+#include "litamin2/service/logging.hpp"
+#include "litamin2/service/service_loop.hpp"
 #include "litamin2/version.hpp"
 
 #include <spdlog/spdlog.h>
@@ -17,6 +18,7 @@
 
 using namespace litamin2;
 using namespace litamin2::daemon;
+using service::ServiceLoop;
 
 namespace {
 
@@ -28,7 +30,7 @@ std::string describe(const DaemonConfig& c) {
   for (const StreamConfig& s : c.streams) streams += (streams.empty() ? "" : ", ") + s.id;
   return fmt::format(
       "domain {}, profile {}, streams [{}], discovery {}, threads {}, queue depth {}", c.dds.domain,
-      to_string(c.dds.profile), streams,
+      service::to_string(c.dds.profile), streams,
       c.discovery.enabled ? c.discovery.pattern : std::string("off"),
       c.threads == 0 ? std::string("auto") : std::to_string(c.threads), c.queue_depth);
 }
@@ -37,7 +39,7 @@ std::string describe(const DaemonConfig& c) {
 
 int main(int argc, char** argv) {
   // Before any thread exists, so that every thread inherits the blocked SIGTERM/SIGINT.
-  ShutdownSignals signals;
+  service::ShutdownSignals signals;
 
   CLI::App app{"litamin2d: LiTAMIN2 LiDAR odometry for many sensor streams over DDS"};
   std::string config_file = "/etc/litamin2/litamin2d.yaml";
@@ -63,23 +65,23 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "<3>error: invalid configuration: %s\n", e.what());
     return 2;
   }
-  setup_logging(config.log_level);
+  service::setup_logging(config.log_level);
   if (check_config) {
     std::cout << config_file << ": ok (" << describe(config) << ")\n";
     return 0;
   }
   spdlog::info("litamin2d {} starting: {}", litamin2::version(), describe(config));
 
-  ServiceLoop service(config.watchdog.enabled);
+  ServiceLoop service_loop(config.watchdog.enabled);
   int exit_code = 0;
   try {
     DaemonNode node(config);
-    service.notifier().ready();
-    service.notifier().status(node.summary());
-    if (service.watchdog().enabled())
+    service_loop.notifier().ready();
+    service_loop.notifier().status(node.summary());
+    if (service_loop.watchdog().enabled())
       spdlog::info(
           "systemd watchdog: pinging every {} ms while healthy",
-          std::chrono::duration_cast<std::chrono::milliseconds>(service.watchdog().period())
+          std::chrono::duration_cast<std::chrono::milliseconds>(service_loop.watchdog().period())
               .count());
     ServiceLoop::Hooks hooks;
     hooks.poll = [&](ServiceLoop::Clock::time_point now) {
@@ -91,8 +93,8 @@ int main(int argc, char** argv) {
     hooks.stall_message =
         fmt::format("a frame has been in processing for over {} s: withholding the watchdog",
                     config.watchdog.stall_timeout_s);
-    service.run(signals, hooks, kLoopPeriod);
-    service.notifier().stopping();
+    service_loop.run(signals, hooks, kLoopPeriod);
+    service_loop.notifier().stopping();
     const DrainResult drained = node.shutdown();
     if (!drained.complete) {
       // A frame is wedged: do not hang on it, systemd would have to kill us.

@@ -1,6 +1,9 @@
 // litamin2-odometry: LiTAMIN2 odometry over a recorded sequence of scans.
 
 #include "common/progress.hpp"
+#include "litamin2/config/mapper_config_yaml.hpp"
+#include "litamin2/config/tracker_config_yaml.hpp"
+#include "litamin2/core/config_error.hpp"
 #include "litamin2/core/stopwatch.hpp"
 #include "litamin2/core/tracker.hpp"
 #include "litamin2/eval/ate.hpp"
@@ -9,7 +12,7 @@
 #include "litamin2/io/kitti_calib.hpp"
 #include "litamin2/io/kitti_sequence.hpp"
 #include "litamin2/io/trajectory.hpp"
-#include "litamin2/mapping/mapper.hpp"
+#include "litamin2/mapping/offline_slam.hpp"
 #include "litamin2/version.hpp"
 #include "odometry/run_stats.hpp"
 
@@ -43,65 +46,15 @@ struct Options {
   std::string mapper_config_file;
 };
 
-/// Offline SLAM: the odometry's keyframes fed to the aggregator's mapping back end in
-/// process; every frame's pose is then corrected by its latest keyframe's correction.
-class LoopClosure {
- public:
-  explicit LoopClosure(const mapping::MapperConfig& config) : mapper_(config) {}
-
-  void add(const Tracker& tracker, const FrameResult& frame, double stamp_s) {
-    if (frame.keyframe) {
-      const auto start = std::chrono::steady_clock::now();
-      mapping::Keyframe kf;
-      kf.key = {"odometry", next_id_};
-      kf.stamp_ns = static_cast<std::int64_t>(std::llround(stamp_s * 1e9));
-      kf.odom_pose = frame.pose;
-      kf.covariance = frame.covariance;
-      kf.voxel_size = tracker.config().voxelizer.voxel_size;
-      kf.distributions = tracker.last_distributions();
-      std::vector<mapping::LoopEdge> loops;
-      frame_of_keyframe_.push_back(keyframe_of_frame_.size());
-      mapper_.add_keyframe(std::move(kf), &loops);
-      if (!loops.empty()) mapper_.optimize();
-      ++next_id_;
-      ms_ += elapsed_ms(start);
-    }
-    keyframe_of_frame_.push_back(next_id_ == 0 ? 0 : next_id_ - 1);
-  }
-
-  /// The odometry poses corrected by the optimised keyframes.
-  std::vector<Eigen::Isometry3d> corrected(const std::vector<Eigen::Isometry3d>& odometry) {
-    mapper_.optimize();
-    std::vector<Eigen::Isometry3d> out;
-    out.reserve(odometry.size());
-    for (std::size_t i = 0; i < odometry.size(); ++i) {
-      const auto c = mapper_.correction("odometry", keyframe_of_frame_[i]);
-      out.push_back(c ? c->pose * odometry[i] : odometry[i]);
-    }
-    return out;
-  }
-
-  /// One line per loop: the two keyframes' scan indices (counted from the first scan run),
-  /// fitness and RMS surface distance.
-  void write_loops(const std::string& path) const {
-    std::ofstream out(path);
-    out << "# from_scan to_scan fitness rmse_m\n";
-    for (const mapping::LoopEdge& loop : mapper_.loops()) {
-      out << frame_of_keyframe_[loop.from.id] << ' ' << frame_of_keyframe_[loop.to.id] << ' '
-          << loop.fitness << ' ' << loop.rmse << '\n';
-    }
-  }
-
-  const mapping::Mapper& mapper() const { return mapper_; }
-  double milliseconds() const { return ms_; }
-
- private:
-  mapping::Mapper mapper_;
-  std::uint64_t next_id_ = 0;
-  std::vector<std::uint64_t> keyframe_of_frame_;
-  std::vector<std::size_t> frame_of_keyframe_;
-  double ms_ = 0.0;
-};
+/// One line per loop: the two keyframes' scan indices (counted from the first scan run),
+/// fitness and RMS surface distance.
+void write_loops(const std::string& path, const std::vector<mapping::OfflineSlam::Loop>& loops) {
+  std::ofstream out(path);
+  out << "# from_scan to_scan fitness rmse_m\n";
+  for (const auto& loop : loops)
+    out << loop.from_frame << ' ' << loop.to_frame << ' ' << loop.fitness << ' ' << loop.rmse
+        << '\n';
+}
 
 void print_accuracy(const char* label, const std::optional<tools::Accuracy>& acc) {
   if (!acc) return;
@@ -181,7 +134,7 @@ int run(const Options& options) {
   tbb::task_arena arena(threads);
 
   Tracker tracker(config);
-  std::optional<LoopClosure> loop_closure;
+  std::optional<mapping::OfflineSlam> loop_closure;
   if (options.loop_closure) {
     loop_closure.emplace(options.mapper_config_file.empty()
                              ? mapping::MapperConfig{}
@@ -197,7 +150,7 @@ int run(const Options& options) {
     FrameResult frame;
     arena.execute([&] { frame = tracker.process(scan); });
     stats.add(frame);
-    if (loop_closure) loop_closure->add(tracker, frame, sequence.timestamp(i));
+    if (loop_closure) loop_closure->add(tracker, frame, Stamp::from_seconds(sequence.timestamp(i)));
     poses.push_back(frame.pose);
     progress.update(i - first + 1,
                     std::to_string(static_cast<int>(stats.frames_per_second())) + " frames/s");
@@ -219,7 +172,7 @@ int run(const Options& options) {
     poses = loop_closure->corrected(poses);
     std::ofstream(out / "mapper_config.yaml")
         << mapping::mapper_config_to_yaml(loop_closure->mapper().config());
-    loop_closure->write_loops((out / "loops.txt").string());
+    write_loops((out / "loops.txt").string(), loop_closure->loops());
   }
   for (std::size_t i = 0; i < poses.size(); ++i)
     timed.push_back({sequence.timestamp(first + i), poses[i]});

@@ -17,8 +17,8 @@
 
 #include "litamin2/dds/participant_factory.hpp"
 #include "litamin2/dds/qos.hpp"
-#include "litamin2/dds/topic_names.hpp"
 #include "litamin2/io/io_error.hpp"
+#include "litamin2/service/topic_names.hpp"
 #include "replay/replay_options.hpp"
 #include "replay/stream_publisher.hpp"
 #include "sensor_msgs/msg/PointCloud2PubSubTypes.h"
@@ -98,7 +98,7 @@ int main(int argc, char** argv) {
   std::vector<std::unique_ptr<StreamPublisher>> streams;
   for (std::size_t s = 0; s < options.streams.size(); ++s) {
     const auto& spec = options.streams[s];
-    const std::string topic_name = litamin2::dds::points_topic(spec.id);
+    const std::string topic_name = litamin2::service::points_topic(spec.id);
     fdds::Topic* topic =
         participant->create_topic(topic_name, type.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
     fdds::DataWriter* writer = topic ? publisher->create_datawriter(topic, writer_qos) : nullptr;
@@ -136,7 +136,7 @@ int main(int argc, char** argv) {
   if (options.wait_subscribers > 0) {
     spdlog::info("waiting up to {} s for {} reader(s) per stream (domain {}, profile {})",
                  options.timeout_s, options.wait_subscribers, options.participant.domain_id,
-                 litamin2::dds::to_string(options.participant.transport));
+                 litamin2::service::to_string(options.participant.transport));
     while (!g_stop.load()) {
       bool all = true;
       for (const auto& stream : streams) {
@@ -147,7 +147,7 @@ int main(int argc, char** argv) {
         for (const auto& stream : streams) {
           spdlog::error("stream {}: {} of {} reader(s) matched on {} within {} s", stream->stream(),
                         stream->matched_readers(), options.wait_subscribers,
-                        litamin2::dds::points_topic(stream->stream()), options.timeout_s);
+                        litamin2::service::points_topic(stream->stream()), options.timeout_s);
         }
         spdlog::error(
             "no subscribers: is the daemon running on domain {} with a compatible "

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <regex>
 
-#include "litamin2/dds/topic_names.hpp"
+#include "litamin2/service/topic_names.hpp"
 
 namespace litamin2::replay {
 
@@ -117,7 +117,7 @@ int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& sh
                 " SEQUENCE_DIR(s): give one --stream per folder, in the same order");
   }
   for (std::size_t i = 0; i < stream_ids.size(); ++i) {
-    if (auto error = dds::stream_id_error(stream_ids[i])) {
+    if (auto error = service::stream_id_error(stream_ids[i])) {
       return fail("--stream '" + stream_ids[i] + "': " + *error);
     }
     for (std::size_t j = 0; j < i; ++j) {

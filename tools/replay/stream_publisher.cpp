@@ -71,7 +71,8 @@ void StreamPublisher::run(Clock::time_point start, std::chrono::nanoseconds peri
 
 bool StreamPublisher::convert(std::size_t i, sensor_msgs::msg::PointCloud2& msg) {
   try {
-    msg = dds::to_pointcloud2(sequence_.load(i), sequence_.timestamp(i), stream_);
+    msg = dds::to_pointcloud2(sequence_.load(i), Stamp::from_seconds(sequence_.timestamp(i)),
+                              stream_);
     return true;
   } catch (const std::exception& e) {
     error_ = "scan " + std::to_string(i) + " (" + sequence_.path(i) + "): " + e.what();

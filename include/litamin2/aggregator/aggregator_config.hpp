@@ -1,16 +1,13 @@
 #pragma once
 /// The aggregator's configuration (litamin2-aggregator.yaml): DDS participant and topics, the
-/// durable store, the mapper, ingest batching, publication policy, watchdog and logging, with
-/// YAML load and validation.
+/// durable store, the mapper, ingest batching, publication policy, watchdog and logging, and its
+/// validation (read from YAML by config/aggregator_config_yaml.hpp).
 
-#include "litamin2/daemon/daemon_config.hpp"
 #include "litamin2/mapping/mapper_config.hpp"
+#include "litamin2/service/transport_config.hpp"
+#include "litamin2/service/watchdog_config.hpp"
 
 #include <string>
-
-namespace YAML {
-class Node;
-}
 
 namespace litamin2::aggregator {
 
@@ -59,22 +56,20 @@ struct PublishConfig {
 };
 
 struct AggregatorConfig {
-  daemon::DdsConfig dds;
+  service::TransportConfig dds;
   TopicsConfig topics;
   StoreConfig store;
   IngestConfig ingest;
   PublishConfig publish;
   mapping::MapperConfig mapper;
-  daemon::WatchdogConfig watchdog;
+  service::WatchdogConfig watchdog;
   /// spdlog level: trace, debug, info, warn, error, critical, off.
   std::string log_level = "info";
 };
 
-/// Reads an aggregator config from a YAML mapping (an empty or null node gives the defaults).
-/// Unknown keys and values of the wrong type or out of range throw ConfigError naming the key
-/// (as a dotted path) and the value.
-AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node);
-/// Reads a YAML file; error messages start with the file name.
-AggregatorConfig load_aggregator_config(const std::string& path);
+/// Throws ConfigError naming the key (as a dotted path) on the first invalid value: topics that
+/// are not valid topic names or not distinct, odometry patterns without exactly one '*', an
+/// empty store path, an unknown log level, an invalid mapper section.
+void validate(const AggregatorConfig& config);
 
 }  // namespace litamin2::aggregator

@@ -29,7 +29,7 @@ struct IngestResult {
   std::size_t new_loops = 0;
   /// Streams that got a new keyframe, and the new keys.
   std::set<std::string> streams;
-  std::vector<mapping::KeyframeKey> keys;
+  std::vector<KeyframeKey> keys;
   mapping::OptimizeSummary optimization;
   double store_ms = 0.0;
   double mapper_ms = 0.0;
@@ -65,7 +65,7 @@ class AggregatorCore {
   /// Commits the keyframes of `batch` not known yet to the store (one transaction), then adds
   /// them to the mapper in canonical order, optimises when loops were found and stores the new
   /// loop edges and corrected poses. `batch` is consumed.
-  IngestResult ingest(std::vector<mapping::Keyframe>& batch);
+  IngestResult ingest(std::vector<Keyframe>& batch);
 
   const mapping::Mapper& mapper() const { return mapper_; }
   const store::KeyframeStore& store() const { return store_; }

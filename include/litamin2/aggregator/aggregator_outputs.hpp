@@ -22,7 +22,7 @@ struct StreamPoses {
   Eigen::Isometry3d correction = Eigen::Isometry3d::Identity();
   struct Entry {
     std::uint64_t id = 0;
-    std::int64_t stamp_ns = 0;
+    Stamp stamp;
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   };
   /// Every keyframe of the stream, by id.

@@ -75,7 +75,7 @@ class MappingWorker {
 
  private:
   void run();
-  void process(std::vector<mapping::Keyframe>& batch);
+  void process(std::vector<Keyframe>& batch);
   void publish(bool force);
 
   AggregatorCore& core_;

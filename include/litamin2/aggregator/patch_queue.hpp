@@ -4,7 +4,7 @@
 /// (a reliable DDS reader then holds the writers back) rather than drop a patch: every patch
 /// received must reach the store.
 
-#include "litamin2/mapping/keyframe.hpp"
+#include "litamin2/core/keyframe.hpp"
 
 #include <chrono>
 #include <condition_variable>
@@ -21,10 +21,10 @@ class PatchQueue {
 
   /// Appends a keyframe, waiting while the queue is full. Returns false (dropping it) only
   /// when the queue is closed.
-  bool push(mapping::Keyframe keyframe);
+  bool push(Keyframe keyframe);
   /// Moves up to `max` keyframes into `out` (appended), waiting up to `timeout` for the first.
   /// Returns how many were taken (0 on timeout or when closed and empty).
-  std::size_t pop_batch(std::vector<mapping::Keyframe>& out, std::size_t max,
+  std::size_t pop_batch(std::vector<Keyframe>& out, std::size_t max,
                         std::chrono::milliseconds timeout);
   /// Wakes every waiter; later pushes fail, pops drain what is left.
   void close();
@@ -41,7 +41,7 @@ class PatchQueue {
   mutable std::mutex mutex_;
   std::condition_variable not_empty_;
   std::condition_variable not_full_;
-  std::deque<mapping::Keyframe> items_;
+  std::deque<Keyframe> items_;
   std::size_t pushed_ = 0;
   std::size_t high_water_ = 0;
   bool closed_ = false;

@@ -8,6 +8,8 @@
 /// C_qp is held fixed within one Newton iteration (as GICP does), so with J = dr/dxi =
 /// [ [y]x  -I ] (y = R p + t) the gradient is 2 J^T C r and the Hessian 2 J^T C J.
 
+#include "litamin2/core/so3.hpp"
+
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 
@@ -54,7 +56,7 @@ struct IcpTerm {
   /// dE/dxi.
   Eigen::Matrix<double, 6, 1> gradient;
   /// Gauss-Newton Hessian 2 J^T C J.
-  Eigen::Matrix<double, 6, 6> hessian;
+  Matrix6d hessian;
 };
 
 /// Evaluates the term for a source mean already moved to the world, y = R p + t.

@@ -6,6 +6,7 @@
 #include "litamin2/core/distribution.hpp"
 #include "litamin2/core/nearest_cache.hpp"
 #include "litamin2/core/registration_config.hpp"
+#include "litamin2/core/so3.hpp"
 #include "litamin2/core/voxel_map.hpp"
 
 #include <Eigen/Core>
@@ -13,9 +14,6 @@
 #include <vector>
 
 namespace litamin2 {
-
-using Matrix6d = Eigen::Matrix<double, 6, 6>;
-using Vector6d = Eigen::Matrix<double, 6, 1>;
 
 struct RegistrationResult {
   /// Source-to-map pose found.

@@ -1,10 +1,16 @@
 #pragma once
-/// Small SO(3)/SE(3) helpers: skew matrices and the pose update used by the solver.
+/// Small SO(3)/SE(3) helpers: skew matrices, the pose update used by the solver, and the
+/// adjoint that moves a pose covariance between frames.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 namespace litamin2 {
+
+/// A pose increment or gradient, (phi, tau): rotation first (the solver's convention).
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+/// A 6x6 block over (phi, tau): Hessians, information and covariance matrices of poses.
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
 /// [v]x, the matrix with [v]x w = v x w.
 inline Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
@@ -28,8 +34,7 @@ inline Eigen::Matrix3d so3_exp(const Eigen::Vector3d& phi) {
 /// The solver's update of a pose by xi = (phi, tau): R <- exp([phi]x) R, t <- exp([phi]x) t + tau,
 /// i.e. left multiplication by (exp([phi]x), tau). A world point y = R p + t moves to
 /// y + phi x y + tau to first order, so dy/dphi = -[y]x and dy/dtau = I.
-inline Eigen::Isometry3d apply_left_update(const Eigen::Matrix<double, 6, 1>& xi,
-                                           const Eigen::Isometry3d& pose) {
+inline Eigen::Isometry3d apply_left_update(const Vector6d& xi, const Eigen::Isometry3d& pose) {
   Eigen::Isometry3d delta = Eigen::Isometry3d::Identity();
   delta.linear() = so3_exp(xi.head<3>());
   delta.translation() = xi.tail<3>();
@@ -38,6 +43,26 @@ inline Eigen::Isometry3d apply_left_update(const Eigen::Matrix<double, 6, 1>& xi
   const Eigen::Quaterniond q(updated.linear());
   updated.linear() = q.normalized().toRotationMatrix();
   return updated;
+}
+
+/// The adjoint of E = (R, t) in the left-update coordinates xi = (phi, tau):
+/// E exp(xi) T E^-1 = exp(Ad_E xi) (E T E^-1), with Ad_E = [[R, 0], [[t]x R, R]].
+inline Matrix6d adjoint(const Eigen::Isometry3d& pose) {
+  const Eigen::Matrix3d r = pose.linear();
+  Matrix6d ad = Matrix6d::Zero();
+  ad.topLeftCorner<3, 3>() = r;
+  ad.bottomLeftCorner<3, 3>() = skew(pose.translation()) * r;
+  ad.bottomRightCorner<3, 3>() = r;
+  return ad;
+}
+
+/// The left-update covariance of E T E^-1 (or of E T: the same map) when T's is `covariance`:
+/// Ad_E C Ad_E^T. Moves a sensor pose's covariance to the vehicle base by the sensor's
+/// extrinsic, or an odometry covariance to the map frame by a correction.
+inline Matrix6d transform_left_covariance(const Matrix6d& covariance,
+                                          const Eigen::Isometry3d& pose) {
+  const Matrix6d ad = adjoint(pose);
+  return ad * covariance * ad.transpose();
 }
 
 }  // namespace litamin2

@@ -3,6 +3,7 @@
 /// scan's distributions to the keyframe map, keyframe decision and map update.
 
 #include "litamin2/core/correspondence_search.hpp"
+#include "litamin2/core/keyframe.hpp"
 #include "litamin2/core/registration.hpp"
 #include "litamin2/core/tracker_config.hpp"
 #include "litamin2/core/voxel_map.hpp"
@@ -70,5 +71,14 @@ class Tracker {
   Eigen::Isometry3d last_keyframe_ = Eigen::Isometry3d::Identity();
   std::size_t frames_ = 0;
 };
+
+/// The keyframe of a frame the tracker has just added to its map (frame.keyframe is true): the
+/// sensor's pose in the odometry frame of the vehicle base, sensor_in_base * frame.pose, with
+/// the covariance moved alike (identity, the default: the tracker's own, bit for bit), the
+/// scan's distributions and the map's voxel size. litamin2d and litamin2-odometry build their
+/// keyframes with it.
+Keyframe make_keyframe(const Tracker& tracker, const FrameResult& frame, KeyframeKey key,
+                       Stamp stamp,
+                       const Eigen::Isometry3d& sensor_in_base = Eigen::Isometry3d::Identity());
 
 }  // namespace litamin2

@@ -2,25 +2,18 @@
 /// One scan of a sensor stream as it travels from the DDS listener to its tracker.
 
 #include "litamin2/core/point_cloud.hpp"
+#include "litamin2/core/stamp.hpp"
 
 #include <chrono>
 #include <cstdint>
-#include <string>
 
 namespace litamin2::daemon {
-
-/// A ROS 2 builtin_interfaces/Time.
-struct Stamp {
-  std::int32_t sec = 0;
-  std::uint32_t nanosec = 0;
-};
 
 struct Frame {
   /// The scan, sensor frame.
   PointCloud cloud;
-  /// The input message's header.
+  /// The input message's header stamp.
   Stamp stamp;
-  std::string frame_id;
   /// When the listener received the sample (latency is measured from here).
   std::chrono::steady_clock::time_point arrival{};
   /// Per-stream arrival count, starting at 0 (dropped frames leave gaps).

@@ -37,10 +37,9 @@ class StreamProcessor {
 };
 
 /// The pose of the base in the odometry frame (the base at the first scan) from the sensor's
-/// pose in the first sensor frame: E * sensor_pose * E^-1 with E the sensor-in-base extrinsic.
+/// pose in the first sensor frame: E * sensor_pose * E^-1 with E the sensor-in-base extrinsic
+/// (its covariance: transform_left_covariance(covariance, E), core/so3.hpp).
 Eigen::Isometry3d base_pose(const Eigen::Isometry3d& sensor_pose,
                             const Eigen::Isometry3d& extrinsic);
-/// The (phi, tau) left-update covariance of base_pose() from the sensor pose's: Ad_E C Ad_E^T.
-Matrix6d base_covariance(const Matrix6d& sensor_covariance, const Eigen::Isometry3d& extrinsic);
 
 }  // namespace litamin2::daemon

@@ -1,5 +1,5 @@
 #pragma once
-/// litamin2/msg/MapPatch <-> mapping::Keyframe: the one conversion each way, used by the daemon
+/// litamin2/msg/MapPatch <-> Keyframe: the one conversion each way, used by the daemon
 /// (writer) and the aggregator (reader).
 ///
 /// On the wire the pose covariance is ROS's (row-major 6x6, translation first, see
@@ -11,7 +11,7 @@
 /// and are set to `cov` and its inverse (identity when `cov` is singular).
 
 #include "litamin2/core/distribution.hpp"
-#include "litamin2/mapping/keyframe.hpp"
+#include "litamin2/core/keyframe.hpp"
 #include "litamin2/msg/MapPatch.h"
 
 #include <cstdint>
@@ -21,24 +21,13 @@
 
 namespace litamin2::dds {
 
-/// A MapPatch from a keyframe's parts (the daemon has them without a Keyframe).
-/// `stamp_ns` is nanoseconds since the epoch; `pose` is the sensor pose in `frame_id`.
-litamin2::msg::MapPatch to_map_patch(const mapping::KeyframeKey& key, std::int64_t stamp_ns,
-                                     const std::string& frame_id, const Eigen::Isometry3d& pose,
-                                     const mapping::Matrix6d& left_covariance, double voxel_size,
-                                     const std::vector<Distribution>& distributions);
 /// A MapPatch of a keyframe.
-litamin2::msg::MapPatch to_map_patch(const mapping::Keyframe& keyframe,
-                                     const std::string& frame_id);
+litamin2::msg::MapPatch to_map_patch(const Keyframe& keyframe, const std::string& frame_id);
 
 /// The keyframe of a MapPatch. Rejects (returns std::nullopt and sets *error) a patch whose
 /// stream id is not a valid stream id, whose pose, covariance, voxel size or distributions hold
 /// non-finite values, or whose voxel size is not positive. Never throws for bad input.
-std::optional<mapping::Keyframe> from_map_patch(const litamin2::msg::MapPatch& msg,
-                                                std::string* error = nullptr);
-
-/// Nanoseconds since the epoch of a (sec, nanosec) stamp, and back (nanosec in [0, 1e9)).
-std::int64_t stamp_to_ns(std::int32_t sec, std::uint32_t nanosec);
-void ns_to_stamp(std::int64_t ns, std::int32_t& sec, std::uint32_t& nanosec);
+std::optional<Keyframe> from_map_patch(const litamin2::msg::MapPatch& msg,
+                                       std::string* error = nullptr);
 
 }  // namespace litamin2::dds

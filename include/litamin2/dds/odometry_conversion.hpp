@@ -12,6 +12,9 @@
 /// (translation first) and the rotation uncertainty's lever arm about the origin is added to
 /// the position part. At t = 0 this is exactly the block reordering.
 
+#include "litamin2/core/so3.hpp"
+#include "litamin2/core/stamp.hpp"
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
@@ -20,8 +23,6 @@
 #include "nav_msgs/msg/Odometry.h"
 
 namespace litamin2::dds {
-
-using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
 /// ROS pose covariance (row-major, (x, y, z, rx, ry, rz)) of a pose whose covariance is
 /// `left_covariance` in the tracker's (phi, tau) left-update coordinates (see above).
@@ -35,12 +36,12 @@ Matrix6d left_covariance_from_ros(const std::array<double, 36>& ros_covariance,
 /// covariance converted by ros_pose_covariance; twist zero with covariance diagonal -1
 /// (ROS's "unknown") unless filled in by the caller.
 nav_msgs::msg::Odometry to_odometry(const Eigen::Isometry3d& pose, const Matrix6d& left_covariance,
-                                    double stamp_seconds, const std::string& frame_id,
+                                    Stamp stamp, const std::string& frame_id,
                                     const std::string& child_frame_id);
 
 /// The content of an Odometry message, as the tracker's types.
 struct OdometrySample {
-  double stamp = 0.0;
+  Stamp stamp;
   std::string frame_id;
   std::string child_frame_id;
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();

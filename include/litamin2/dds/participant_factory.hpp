@@ -8,6 +8,8 @@
 #include <string>
 #include <string_view>
 
+#include "litamin2/service/transport_config.hpp"
+
 #include <fastdds/dds/core/status/StatusMask.hpp>
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/domain/DomainParticipantListener.hpp>
@@ -15,24 +17,7 @@
 
 namespace litamin2::dds {
 
-/// Transport setup of a participant.
-enum class TransportProfile {
-  /// Traffic stays on this host: no builtin transports; UDPv4 bound to 127.0.0.1 (interface
-  /// whitelist) with large socket buffers; shared memory with a large segment; discovery by
-  /// unicast to the initial peer 127.0.0.1 (no multicast locators at all). The default.
-  kLoopback,
-  /// Shared memory with a large segment plus UDPv4 on all interfaces with large buffers (in place
-  /// of the builtin pair), default multicast discovery: for hosts that talk to other hosts.
-  kShm,
-  /// Fast DDS's builtin transports and discovery, untouched (SHM segment 512 KiB: slow for
-  /// large scans, see DESIGN.md section 4).
-  kDefault,
-  /// A participant profile from a Fast DDS XML file (ParticipantConfig::xml_file/xml_profile).
-  kXml,
-};
-
-/// "loopback", "shm", "default", "xml".
-const char* to_string(TransportProfile profile);
+using service::TransportProfile;
 
 /// Everything needed to create a participant.
 struct ParticipantConfig {

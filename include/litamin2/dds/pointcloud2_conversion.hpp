@@ -7,6 +7,7 @@
 #include <string>
 
 #include "litamin2/core/point_cloud.hpp"
+#include "litamin2/core/stamp.hpp"
 #include "sensor_msgs/msg/PointCloud2.h"
 
 namespace litamin2::dds {
@@ -30,6 +31,8 @@ enum class CloudError {
   kDataSizeMismatch,
   /// width * height > max_points.
   kTooManyPoints,
+  /// header.stamp.nanosec >= 1e9.
+  kBadStamp,
 };
 
 /// Short name of an error ("missing_field", ...), for counters and logs.
@@ -83,8 +86,8 @@ CloudError from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
 
 /// A dense, unordered (height 1), host-byte-order PointCloud2 with FLOAT32 fields x (offset 0),
 /// y (4), z (8), intensity (12), point_step 16, row_step 16 * width; intensity is 0 when the
-/// cloud has none. header.stamp from `stamp_seconds`, header.frame_id = frame_id.
-sensor_msgs::msg::PointCloud2 to_pointcloud2(const PointCloud& cloud, double stamp_seconds,
+/// cloud has none. header.stamp = stamp, header.frame_id = frame_id.
+sensor_msgs::msg::PointCloud2 to_pointcloud2(const PointCloud& cloud, Stamp stamp,
                                              const std::string& frame_id);
 
 }  // namespace litamin2::dds

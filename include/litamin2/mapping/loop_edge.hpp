@@ -2,7 +2,7 @@
 /// A verified loop closure: the pose of one keyframe in the sensor frame of another, found by
 /// LiTAMIN2 registration of their distributions.
 
-#include "litamin2/mapping/keyframe.hpp"
+#include "litamin2/core/keyframe.hpp"
 
 namespace litamin2::mapping {
 

@@ -5,7 +5,7 @@
 ///
 /// Not thread-safe: one owner calls it (the aggregator's mapping thread).
 
-#include "litamin2/mapping/keyframe.hpp"
+#include "litamin2/core/keyframe.hpp"
 #include "litamin2/mapping/loop_edge.hpp"
 #include "litamin2/mapping/mapper_config.hpp"
 
@@ -96,7 +96,7 @@ class Mapper {
   std::optional<KeyframePose> correction(const std::string& stream,
                                          std::optional<std::uint64_t> id = std::nullopt) const;
   /// The map frame: the anchor of the group holding the canonically first keyframe of all
-  /// (mapping::canonical_before; every group is in the frame of its anchor stream, of two
+  /// (canonical_before; every group is in the frame of its anchor stream, of two
   /// groups that meet the one whose anchor's first keyframe comes first keeps its frame).
   /// Empty without keyframes.
   std::string map_anchor() const;

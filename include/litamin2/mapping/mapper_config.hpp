@@ -1,12 +1,8 @@
 #pragma once
 /// Everything the mapper (place recognition, loop verification, pose graph, global map) is
-/// configured by, with YAML load and validation.
+/// configured by, and its validation (read from YAML by config/mapper_config_yaml.hpp).
 
 #include <string>
-
-namespace YAML {
-class Node;
-}
 
 namespace litamin2::mapping {
 
@@ -118,13 +114,7 @@ struct MapperConfig {
   double map_voxel_size = 3.0;
 };
 
-/// Reads a mapper config from a YAML mapping; absent keys keep their defaults, unknown keys
-/// and out-of-range values throw ConfigError naming the key and value.
-MapperConfig mapper_config_from_yaml(const YAML::Node& node);
-/// Reads a YAML file (the whole file, or its `mapper:` section if it has one); errors name the
-/// file.
-MapperConfig load_mapper_config(const std::string& path);
-/// The full config as YAML (every key).
-std::string mapper_config_to_yaml(const MapperConfig& config);
+/// Throws ConfigError on the first invalid value (the Mapper's constructor calls it).
+void validate(const MapperConfig& config);
 
 }  // namespace litamin2::mapping

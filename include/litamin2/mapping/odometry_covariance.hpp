@@ -19,7 +19,7 @@
 /// translation difference in a's frame, rotation error on the right of the measurement). With
 /// J = [[-R_a^T [t_b]x, R_a^T], [R_b^T, 0]] the edge covariance is J C_b J^T, translation first.
 
-#include "litamin2/mapping/keyframe.hpp"
+#include "litamin2/core/keyframe.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>

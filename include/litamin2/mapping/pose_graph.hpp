@@ -3,6 +3,7 @@
 /// their standard deviations, a robust (Cauchy) loss on loop edges so that a wrong loop that
 /// passed verification cannot bend the whole graph, and one fixed node per connected part.
 
+#include "litamin2/core/so3.hpp"
 #include "litamin2/mapping/mapper_config.hpp"
 
 #include <Eigen/Core>
@@ -11,9 +12,6 @@
 #include <vector>
 
 namespace litamin2::mapping {
-
-using Vector6d = Eigen::Matrix<double, 6, 1>;
-using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
 struct PoseGraphEdge {
   /// Node indices: the edge measures the pose of `to` in the frame of `from`.

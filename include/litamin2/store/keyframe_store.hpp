@@ -22,7 +22,7 @@
 /// from several processes; writers then wait for each other up to busy_timeout_ms).
 
 #include "litamin2/core/covariance_regularizer.hpp"
-#include "litamin2/mapping/keyframe.hpp"
+#include "litamin2/core/keyframe.hpp"
 #include "litamin2/mapping/loop_edge.hpp"
 #include "litamin2/mapping/mapper.hpp"
 #include "litamin2/store/store_error.hpp"
@@ -77,16 +77,16 @@ class KeyframeStore {
 
   /// Inserts `keyframe` in its own transaction unless a keyframe with its key is stored
   /// already (then the stored one is kept unchanged). Returns true if it was new.
-  bool insert_keyframe(const mapping::Keyframe& keyframe);
+  bool insert_keyframe(const Keyframe& keyframe);
   /// Inserts the keyframes not stored yet, all in one transaction (all or none on error).
   /// Returns how many were new.
-  std::size_t insert_keyframes(const std::vector<const mapping::Keyframe*>& keyframes);
+  std::size_t insert_keyframes(const std::vector<const Keyframe*>& keyframes);
 
-  /// Every keyframe, in canonical order (mapping::canonical_before). Distributions get their
+  /// Every keyframe, in canonical order (canonical_before). Distributions get their
   /// cov, shape_cov and shape_cov_inv from the stored covariance with `regularizer`.
-  std::vector<mapping::Keyframe> load_keyframes(const RegularizerConfig& regularizer = {}) const;
+  std::vector<Keyframe> load_keyframes(const RegularizerConfig& regularizer = {}) const;
   std::size_t keyframe_count() const;
-  bool contains(const mapping::KeyframeKey& key) const;
+  bool contains(const KeyframeKey& key) const;
 
   /// Replaces every stored loop edge with `edges`, in one transaction. Two edges with the same
   /// (from, to) are an error.

@@ -15,7 +15,7 @@
 
 #include "litamin2/core/covariance_regularizer.hpp"
 #include "litamin2/core/distribution.hpp"
-#include "litamin2/mapping/keyframe.hpp"
+#include "litamin2/core/keyframe.hpp"
 
 #include <Eigen/Geometry>
 #include <cstddef>
@@ -31,8 +31,8 @@ constexpr std::size_t kDistributionBytes = 10 * 4;
 std::string encode_pose(const Eigen::Isometry3d& pose);
 Eigen::Isometry3d decode_pose(const void* data, std::size_t size);
 
-std::string encode_matrix6(const mapping::Matrix6d& m);
-mapping::Matrix6d decode_matrix6(const void* data, std::size_t size);
+std::string encode_matrix6(const Matrix6d& m);
+Matrix6d decode_matrix6(const void* data, std::size_t size);
 
 /// Throws std::invalid_argument if a count is negative.
 std::string encode_distributions(const std::vector<Distribution>& distributions);

@@ -1,14 +1,14 @@
 #include "litamin2/aggregator/dds/aggregator_messages.hpp"
 
-#include "litamin2/daemon/dds/status_message.hpp"
+#include "litamin2/dds/diagnostics.hpp"
 #include "litamin2/dds/map_patch_conversion.hpp"
 #include "litamin2/dds/pose_conversion.hpp"
 #include "litamin2/dds/time_conversion.hpp"
 
 namespace litamin2::aggregator {
 
-using daemon::fixed_number;
-using daemon::key_value;
+using dds::fixed_number;
+using dds::key_value;
 
 litamin2::msg::KeyframePoses to_keyframe_poses_msg(const StreamPoses& poses) {
   litamin2::msg::KeyframePoses msg;
@@ -22,20 +22,16 @@ litamin2::msg::KeyframePoses to_keyframe_poses_msg(const StreamPoses& poses) {
   for (const StreamPoses::Entry& e : poses.keyframes) {
     litamin2::msg::KeyframePose p;
     p.keyframe_id(e.id);
-    std::int32_t sec = 0;
-    std::uint32_t nanosec = 0;
-    dds::ns_to_stamp(e.stamp_ns, sec, nanosec);
-    p.stamp().sec(sec);
-    p.stamp().nanosec(nanosec);
+    p.stamp(dds::to_time(e.stamp));
     p.pose(dds::to_pose_msg(e.pose));
     out.push_back(std::move(p));
   }
   return msg;
 }
 
-litamin2::msg::MapSummary to_map_summary_msg(const MapSummary& s, double stamp_seconds) {
+litamin2::msg::MapSummary to_map_summary_msg(const MapSummary& s, Stamp stamp) {
   litamin2::msg::MapSummary msg;
-  msg.stamp(dds::to_time(stamp_seconds));
+  msg.stamp(dds::to_time(stamp));
   msg.frame_id(kMapFrame);
   msg.anchor_stream(s.anchor);
   msg.voxel_size(static_cast<float>(s.voxel_size));
@@ -57,9 +53,9 @@ litamin2::msg::MapSummary to_map_summary_msg(const MapSummary& s, double stamp_s
 diagnostic_msgs::msg::DiagnosticArray make_aggregator_status(
     const WorkerStatus& w, const IngestCounters& in,
     const std::map<std::string, OdometryStreamStatus>& odometry, std::uint8_t level,
-    const std::string& message, double stamp_seconds) {
+    const std::string& message, Stamp stamp) {
   diagnostic_msgs::msg::DiagnosticArray array;
-  array.header().stamp(dds::to_time(stamp_seconds));
+  array.header().stamp(dds::to_time(stamp));
   array.header().frame_id("");
   diagnostic_msgs::msg::DiagnosticStatus status;
   status.level(level);

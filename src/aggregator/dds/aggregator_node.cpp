@@ -2,12 +2,13 @@
 
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "litamin2/aggregator/dds/aggregator_messages.hpp"
-#include "litamin2/daemon/dds/participant_setup.hpp"
+#include "litamin2/dds/participant_setup.hpp"
 #include "litamin2/dds/qos.hpp"
-#include "litamin2/dds/topic_names.hpp"
+#include "litamin2/dds/time_conversion.hpp"
 #include "litamin2/msg/KeyframePosesPubSubTypes.h"
 #include "litamin2/msg/MapPatchPubSubTypes.h"
 #include "litamin2/msg/MapSummaryPubSubTypes.h"
+#include "litamin2/service/topic_names.hpp"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 
 #include <spdlog/spdlog.h>
@@ -54,7 +55,7 @@ class AggregatorNode::Sink : public AggregatorSink {
     if (!poses_->write(&msg)) spdlog::warn("cannot publish the poses of stream {}", poses.stream);
   }
   void publish_summary(const MapSummary& summary) override {
-    litamin2::msg::MapSummary msg = to_map_summary_msg(summary, daemon::wall_seconds());
+    litamin2::msg::MapSummary msg = to_map_summary_msg(summary, dds::wall_clock_now());
     if (!summary_->write(&msg)) spdlog::warn("cannot publish the map summary");
   }
 
@@ -77,18 +78,16 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
                core_->mapper().loops().size());
 
   std::string error;
-  participant_ = dds::create_participant(
-      daemon::participant_config(config_.dds, "litamin2-aggregator"), &error);
+  participant_ =
+      dds::create_participant(dds::participant_config(config_.dds, "litamin2-aggregator"), &error);
   if (!participant_) throw std::runtime_error("cannot create the DDS participant: " + error);
-  patch_type_ = daemon::register_type(participant_.get(), new litamin2::msg::MapPatchPubSubType());
+  patch_type_ = dds::register_type(participant_.get(), new litamin2::msg::MapPatchPubSubType());
   poses_type_ =
-      daemon::register_type(participant_.get(), new litamin2::msg::KeyframePosesPubSubType());
-  summary_type_ =
-      daemon::register_type(participant_.get(), new litamin2::msg::MapSummaryPubSubType());
-  status_type_ = daemon::register_type(participant_.get(),
-                                       new diagnostic_msgs::msg::DiagnosticArrayPubSubType());
-  odometry_type_ =
-      daemon::register_type(participant_.get(), new nav_msgs::msg::OdometryPubSubType());
+      dds::register_type(participant_.get(), new litamin2::msg::KeyframePosesPubSubType());
+  summary_type_ = dds::register_type(participant_.get(), new litamin2::msg::MapSummaryPubSubType());
+  status_type_ =
+      dds::register_type(participant_.get(), new diagnostic_msgs::msg::DiagnosticArrayPubSubType());
+  odometry_type_ = dds::register_type(participant_.get(), new nav_msgs::msg::OdometryPubSubType());
 
   subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
   publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
@@ -121,7 +120,7 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
   if (!reader_) throw std::runtime_error("cannot create the map patch reader");
   next_status_ = Clock::now();
   spdlog::info("DDS participant up: domain {}, profile {}, reading {}, publishing {} and {}",
-               config_.dds.domain, daemon::to_string(config_.dds.profile),
+               config_.dds.domain, service::to_string(config_.dds.profile),
                config_.topics.map_patches, config_.topics.keyframe_poses,
                config_.topics.map_summary);
 }
@@ -134,8 +133,8 @@ AggregatorNode::~AggregatorNode() {
 
 void AggregatorNode::subscribe_odometry(const WorkerStatus& status) {
   if (config_.topics.odometry.empty()) return;
-  const auto in = dds::TopicPattern::parse(config_.topics.odometry);
-  const auto out = dds::TopicPattern::parse(config_.topics.map_odometry);
+  const auto in = service::TopicPattern::parse(config_.topics.odometry);
+  const auto out = service::TopicPattern::parse(config_.topics.map_odometry);
   if (!in || !out) return;  // rejected by the config already
   for (const auto& [stream, counts] : status.streams) {
     if (odometry_.count(stream)) continue;
@@ -227,7 +226,7 @@ void AggregatorNode::publish_status(Clock::time_point now) {
   }
   reported_rejected_ = in.rejected;
   reported_lost_ = in.samples_lost;
-  auto msg = make_aggregator_status(w, in, relay_.status(), level, message, daemon::wall_seconds());
+  auto msg = make_aggregator_status(w, in, relay_.status(), level, message, dds::wall_clock_now());
   status_writer_->write(&msg);
 }
 

@@ -1,7 +1,7 @@
 #include "litamin2/aggregator/dds/map_odometry.hpp"
 
 #include "litamin2/aggregator/dds/aggregator_messages.hpp"
-#include "litamin2/daemon/stream_processor.hpp"
+#include "litamin2/core/so3.hpp"
 #include "litamin2/dds/odometry_conversion.hpp"
 #include "litamin2/dds/pose_conversion.hpp"
 
@@ -22,8 +22,8 @@ nav_msgs::msg::Odometry to_map_odometry(const nav_msgs::msg::Odometry& odom,
   const Eigen::Isometry3d& c = correction.correction;
   const Eigen::Isometry3d pose = c * in.pose;
   // C exp(xi) T = exp(Ad_C xi) C T: the left-update covariance moves by Ad_C, the same map as
-  // a sensor extrinsic's (daemon::base_covariance).
-  const dds::Matrix6d left = daemon::base_covariance(in.left_covariance, c);
+  // a sensor extrinsic's.
+  const Matrix6d left = transform_left_covariance(in.left_covariance, c);
   nav_msgs::msg::Odometry out = odom;
   out.header().frame_id(correction.frame_id);
   out.pose().pose(dds::to_pose_msg(pose));

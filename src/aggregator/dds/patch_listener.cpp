@@ -33,7 +33,7 @@ void PatchListener::on_data_available(fdds::DataReader* reader) {
     t = taken_at;
     if (!info.valid_data) continue;
     ++received_;
-    std::optional<mapping::Keyframe> keyframe = dds::from_map_patch(msg, &error);
+    std::optional<Keyframe> keyframe = dds::from_map_patch(msg, &error);
     const double converted_at = thread_cpu_seconds();
     convert_cpu_ns_ += ns(converted_at - t);
     t = converted_at;

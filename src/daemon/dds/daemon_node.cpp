@@ -2,11 +2,12 @@
 
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "litamin2/daemon/dds/dds_stream_sink.hpp"
-#include "litamin2/daemon/dds/participant_setup.hpp"
 #include "litamin2/daemon/dds/points_listener.hpp"
 #include "litamin2/daemon/dds/status_message.hpp"
 #include "litamin2/daemon/stream_processor.hpp"
+#include "litamin2/dds/participant_setup.hpp"
 #include "litamin2/dds/qos.hpp"
+#include "litamin2/dds/time_conversion.hpp"
 #include "litamin2/msg/MapPatchPubSubTypes.h"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 #include "sensor_msgs/msg/PointCloud2PubSubTypes.h"
@@ -43,7 +44,7 @@ struct DaemonNode::Stream {
 DaemonNode::DaemonNode(DaemonConfig config) : config_(std::move(config)) {
   if (config_.discovery.enabled) {
     std::string error;
-    pattern_ = dds::TopicPattern::parse(config_.discovery.pattern, &error);
+    pattern_ = service::TopicPattern::parse(config_.discovery.pattern, &error);
     if (!pattern_) throw ConfigError("discovery.pattern: " + error);
   }
   // Trackers of configured streams are built first: an invalid config fails before DDS starts.
@@ -56,15 +57,16 @@ DaemonNode::DaemonNode(DaemonConfig config) : config_(std::move(config)) {
   sensor_msgs::msg::PointCloud2PubSubType points_type_probe;
   discovery_ = std::make_unique<PublisherDiscovery>(points_type_probe.getName());
   std::string error;
-  participant_ = dds::create_participant(participant_config(config_.dds, "litamin2d"), &error,
+  participant_ = dds::create_participant(dds::participant_config(config_.dds, "litamin2d"), &error,
                                          discovery_.get(), fdds::StatusMask::none());
   if (!participant_) throw std::runtime_error("cannot create the DDS participant: " + error);
 
-  points_type_ = register_type(participant_.get(), new sensor_msgs::msg::PointCloud2PubSubType());
-  odom_type_ = register_type(participant_.get(), new nav_msgs::msg::OdometryPubSubType());
-  map_patch_type_ = register_type(participant_.get(), new litamin2::msg::MapPatchPubSubType());
+  points_type_ =
+      dds::register_type(participant_.get(), new sensor_msgs::msg::PointCloud2PubSubType());
+  odom_type_ = dds::register_type(participant_.get(), new nav_msgs::msg::OdometryPubSubType());
+  map_patch_type_ = dds::register_type(participant_.get(), new litamin2::msg::MapPatchPubSubType());
   status_type_ =
-      register_type(participant_.get(), new diagnostic_msgs::msg::DiagnosticArrayPubSubType());
+      dds::register_type(participant_.get(), new diagnostic_msgs::msg::DiagnosticArrayPubSubType());
 
   subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
   publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
@@ -247,7 +249,7 @@ void DaemonNode::publish_status(Clock::time_point now) {
     s.reported_bad = st.stats.bad_messages;
     s.reported_out_of_order = st.stats.frames_out_of_order;
   }
-  auto msg = make_status_message(statuses, wall_seconds());
+  auto msg = make_status_message(statuses, dds::wall_clock_now());
   status_writer_->write(&msg);
 }
 

@@ -18,17 +18,12 @@ DdsStreamSink::DdsStreamSink(fdds::DataWriter* odom_writer, fdds::DataWriter* ma
 
 void DdsStreamSink::publish_odometry(const OdometryOutput& o) {
   nav_msgs::msg::Odometry msg =
-      dds::to_odometry(o.pose, o.covariance, 0.0, odom_frame_, base_frame_);
-  // The input's stamp, exactly (not through seconds as a double).
-  msg.header().stamp().sec(o.stamp.sec);
-  msg.header().stamp().nanosec(o.stamp.nanosec);
+      dds::to_odometry(o.pose, o.covariance, o.stamp, odom_frame_, base_frame_);
   if (!odom_writer_->write(&msg)) ++write_failures_;
 }
 
-void DdsStreamSink::publish_keyframe(const KeyframeOutput& k) {
-  litamin2::msg::MapPatch msg =
-      dds::to_map_patch({k.stream, k.keyframe_id}, dds::stamp_to_ns(k.stamp.sec, k.stamp.nanosec),
-                        odom_frame_, k.pose, k.covariance, k.voxel_size, k.distributions);
+void DdsStreamSink::publish_keyframe(const Keyframe& keyframe) {
+  litamin2::msg::MapPatch msg = dds::to_map_patch(keyframe, odom_frame_);
   if (!map_patch_writer_->write(&msg)) ++write_failures_;
 }
 

@@ -1,5 +1,6 @@
 #include "litamin2/daemon/dds/points_listener.hpp"
 
+#include "litamin2/dds/time_conversion.hpp"
 #include "sensor_msgs/msg/PointCloud2.h"
 
 #include <spdlog/spdlog.h>
@@ -43,12 +44,11 @@ void PointsListener::on_data_available(fdds::DataReader* reader) {
       log_bad("empty", fmt::format("no finite point among {} point(s)", conversion.total_points));
       continue;
     }
-    const std::pair<std::int32_t, std::uint32_t> stamp{msg.header().stamp().sec(),
-                                                       msg.header().stamp().nanosec()};
-    std::optional<std::pair<std::int32_t, std::uint32_t>> previous;
+    const Stamp stamp = dds::to_stamp(msg.header().stamp());
+    std::optional<Stamp> previous;
     {
       std::lock_guard lock(stamp_mutex_);
-      if (last_stamp_ && stamp <= *last_stamp_) {
+      if (last_stamp_ && !(*last_stamp_ < stamp)) {
         previous = last_stamp_;
       } else {
         last_stamp_ = stamp;
@@ -59,7 +59,8 @@ void PointsListener::on_data_available(fdds::DataReader* reader) {
       if (const auto suppressed = out_of_order_log_.allow())
         spdlog::warn(
             "stream {}: dropped a scan stamped {}.{:09d}, not after the last one ({}.{:09d}){}",
-            stream_, stamp.first, stamp.second, previous->first, previous->second,
+            stream_, msg.header().stamp().sec(), msg.header().stamp().nanosec(),
+            dds::to_time(*previous).sec(), dds::to_time(*previous).nanosec(),
             *suppressed ? fmt::format(" and {} more since the last report", *suppressed)
                         : std::string());
       continue;
@@ -67,8 +68,7 @@ void PointsListener::on_data_available(fdds::DataReader* reader) {
     Frame frame;
     frame.cloud = std::move(conversion.cloud);
     conversion.cloud = PointCloud();
-    frame.stamp = {stamp.first, stamp.second};
-    frame.frame_id = msg.header().frame_id();
+    frame.stamp = stamp;
     frame.arrival = arrival;
     frame.sequence = sequence_.fetch_add(1);
     stats_.record_received();

@@ -1,28 +1,17 @@
 #include "litamin2/daemon/dds/status_message.hpp"
 
+#include "litamin2/dds/diagnostics.hpp"
 #include "litamin2/dds/time_conversion.hpp"
-
-#include <cstdio>
 
 namespace litamin2::daemon {
 
-diagnostic_msgs::msg::KeyValue key_value(const char* key, const std::string& value) {
-  diagnostic_msgs::msg::KeyValue kv;
-  kv.key(key);
-  kv.value(value);
-  return kv;
-}
-
-std::string fixed_number(double value, int decimals) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
-  return buffer;
-}
+using dds::fixed_number;
+using dds::key_value;
 
 diagnostic_msgs::msg::DiagnosticArray make_status_message(const std::vector<StreamStatus>& streams,
-                                                          double stamp_seconds) {
+                                                          Stamp stamp) {
   diagnostic_msgs::msg::DiagnosticArray array;
-  array.header().stamp(dds::to_time(stamp_seconds));
+  array.header().stamp(dds::to_time(stamp));
   array.header().frame_id("");
   for (const StreamStatus& s : streams) {
     diagnostic_msgs::msg::DiagnosticStatus status;

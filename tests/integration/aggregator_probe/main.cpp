@@ -16,6 +16,7 @@
 #include "litamin2/dds/map_patch_conversion.hpp"
 #include "litamin2/dds/participant_factory.hpp"
 #include "litamin2/dds/qos.hpp"
+#include "litamin2/dds/time_conversion.hpp"
 #include "litamin2/io/kitti_sequence.hpp"
 #include "litamin2/msg/KeyframePosesPubSubTypes.h"
 #include "litamin2/msg/MapPatchPubSubTypes.h"
@@ -71,17 +72,17 @@ class PosesListener : public fdds::DataReaderListener {
   std::map<std::string, std::pair<std::size_t, std::string>> latest;
 };
 
-std::vector<mapping::Keyframe> track(const std::string& folder, std::size_t frames) {
+std::vector<Keyframe> track(const std::string& folder, std::size_t frames) {
   io::ScanSequence sequence(folder);
   Tracker tracker{TrackerConfig{}};
-  std::vector<mapping::Keyframe> out;
+  std::vector<Keyframe> out;
   const std::size_t n = frames > 0 ? std::min(frames, sequence.size()) : sequence.size();
   for (std::size_t i = 0; i < n; ++i) {
     const FrameResult r = tracker.process(sequence.load(i));
     if (!r.keyframe) continue;
-    mapping::Keyframe kf;
+    Keyframe kf;
     kf.key.id = out.size();
-    kf.stamp_ns = kEpochNs + static_cast<std::int64_t>(sequence.timestamp(i) * 1e9);
+    kf.stamp.nanoseconds = kEpochNs + static_cast<std::int64_t>(sequence.timestamp(i) * 1e9);
     kf.odom_pose = r.pose;
     kf.covariance = r.covariance;
     kf.voxel_size = tracker.map().voxel_size();
@@ -137,6 +138,20 @@ std::vector<Distribution> scene_patch(const std::vector<Distribution>& world, do
   std::vector<Distribution> out(first, last);
   for (Distribution& d : out) d.mean.x() -= x;
   return out;
+}
+
+/// A benchmark keyframe: stamped kEpochNs (the publisher sets the real stamp), covariance 1e-4 I,
+/// 1 m voxels.
+Keyframe bench_keyframe(KeyframeKey key, const Eigen::Isometry3d& pose,
+                        std::vector<Distribution> distributions) {
+  Keyframe kf;
+  kf.key = std::move(key);
+  kf.stamp = Stamp{kEpochNs};
+  kf.odom_pose = pose;
+  kf.covariance = Matrix6d::Identity() * 1e-4;
+  kf.voxel_size = 1.0;
+  kf.distributions = std::move(distributions);
+  return kf;
 }
 
 }  // namespace
@@ -249,10 +264,11 @@ int main(int argc, char** argv) {
       std::snprintf(id, sizeof id, "s%03d", s);
       if (with_scene)
         worlds.push_back(scene(-60.0, speed * (duration + period) + 60.0, synthetic_n, rng));
-      templates.push_back(litamin2::dds::to_map_patch(
-          {id, 0}, kEpochNs, std::string(id) + "/odom", Eigen::Isometry3d::Identity(),
-          mapping::Matrix6d::Identity() * 1e-4, 1.0,
-          with_scene ? scene_patch(worlds.back(), 0.0) : synthetic(synthetic_n, rng)));
+      templates.push_back(
+          litamin2::dds::to_map_patch(bench_keyframe({id, 0}, Eigen::Isometry3d::Identity(),
+                                                     with_scene ? scene_patch(worlds.back(), 0.0)
+                                                                : synthetic(synthetic_n, rng)),
+                                      std::string(id) + "/odom"));
     }
     const auto start = Clock::now();
     for (std::uint64_t k = 0;; ++k) {
@@ -266,19 +282,19 @@ int main(int argc, char** argv) {
           const double x = speed * static_cast<double>(k) * period;
           Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
           pose.translation().x() = x;
-          msg = litamin2::dds::to_map_patch({msg.stream_id(), k}, kEpochNs, msg.frame_id(), pose,
-                                            mapping::Matrix6d::Identity() * 1e-4, 1.0,
-                                            scene_patch(worlds[s], x));
+          msg = litamin2::dds::to_map_patch(
+              bench_keyframe({msg.stream_id(), k}, pose, scene_patch(worlds[s], x)),
+              msg.frame_id());
         }
         msg.keyframe_id(k);
-        litamin2::dds::ns_to_stamp(kEpochNs + static_cast<std::int64_t>(k * period * 1e9),
-                                   msg.stamp().sec(), msg.stamp().nanosec());
+        msg.stamp(litamin2::dds::to_time(
+            litamin2::Stamp{kEpochNs + static_cast<std::int64_t>(k * period * 1e9)}));
         if (!with_scene) msg.pose().position().x(static_cast<double>(k));
         if (writer->write(&msg)) ++published;
       }
     }
   } else {
-    std::vector<mapping::Keyframe> keyframes = track(sequence, frames);
+    std::vector<Keyframe> keyframes = track(sequence, frames);
     if (!count_file.empty()) {
       if (FILE* f = std::fopen(count_file.c_str(), "w")) {
         std::fprintf(f, "%zu\n", keyframes.size());
@@ -298,7 +314,7 @@ int main(int argc, char** argv) {
       if (rate > 0)
         std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(
                                                   std::chrono::duration<double>(k / rate)));
-      mapping::Keyframe kf = keyframes[order[k].second];
+      Keyframe kf = keyframes[order[k].second];
       kf.key.stream = order[k].first;
       litamin2::msg::MapPatch msg = litamin2::dds::to_map_patch(kf, kf.key.stream + "/odom");
       if (writer->write(&msg)) ++published;

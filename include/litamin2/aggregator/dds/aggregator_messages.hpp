@@ -20,7 +20,7 @@ namespace litamin2::aggregator {
 inline constexpr const char* kMapFrame = "map";
 
 litamin2::msg::KeyframePoses to_keyframe_poses_msg(const StreamPoses& poses);
-litamin2::msg::MapSummary to_map_summary_msg(const MapSummary& summary, double stamp_seconds);
+litamin2::msg::MapSummary to_map_summary_msg(const MapSummary& summary, Stamp stamp);
 
 /// What the status reports besides the mapping thread's counters.
 struct IngestCounters {
@@ -40,6 +40,6 @@ struct IngestCounters {
 diagnostic_msgs::msg::DiagnosticArray make_aggregator_status(
     const WorkerStatus& worker, const IngestCounters& ingest,
     const std::map<std::string, OdometryStreamStatus>& odometry, std::uint8_t level,
-    const std::string& message, double stamp_seconds);
+    const std::string& message, Stamp stamp);
 
 }  // namespace litamin2::aggregator

@@ -4,7 +4,7 @@
 /// thread. Invalid patches are counted and logged at most once per second.
 
 #include "litamin2/aggregator/patch_queue.hpp"
-#include "litamin2/daemon/log_rate_limiter.hpp"
+#include "litamin2/service/log_rate_limiter.hpp"
 
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 
@@ -35,7 +35,7 @@ class PatchListener : public eprosima::fastdds::dds::DataReaderListener {
 
  private:
   PatchQueue& queue_;
-  daemon::LogRateLimiter bad_patch_log_;
+  service::LogRateLimiter bad_patch_log_;
   std::atomic<std::uint64_t> received_{0};
   std::atomic<std::uint64_t> rejected_{0};
   std::atomic<std::uint64_t> samples_lost_{0};

@@ -11,7 +11,7 @@
 #include "litamin2/daemon/dds/status_message.hpp"
 #include "litamin2/daemon/stream_scheduler.hpp"
 #include "litamin2/dds/participant_factory.hpp"
-#include "litamin2/dds/topic_names.hpp"
+#include "litamin2/service/topic_names.hpp"
 
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
@@ -69,7 +69,7 @@ class DaemonNode {
   void publish_status(Clock::time_point now);
 
   DaemonConfig config_;
-  std::optional<dds::TopicPattern> pattern_;
+  std::optional<service::TopicPattern> pattern_;
   std::unique_ptr<PublisherDiscovery> discovery_;
   dds::ParticipantPtr participant_;
   eprosima::fastdds::dds::TypeSupport points_type_;

@@ -20,7 +20,7 @@ class DdsStreamSink : public ResultSink {
                 std::string base_frame);
 
   void publish_odometry(const OdometryOutput& odometry) override;
-  void publish_keyframe(const KeyframeOutput& keyframe) override;
+  void publish_keyframe(const Keyframe& keyframe) override;
 
   /// Writes that DDS refused (e.g. a full history past its blocking time).
   std::uint64_t write_failures() const { return write_failures_; }

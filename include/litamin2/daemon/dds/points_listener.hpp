@@ -14,10 +14,10 @@
 ///    odometry's stamps only move forward. A newly matched publisher may restart its stamps:
 ///    the check then starts over (the tracker is not reset).
 
-#include "litamin2/daemon/log_rate_limiter.hpp"
 #include "litamin2/daemon/stream_scheduler.hpp"
 #include "litamin2/daemon/stream_stats.hpp"
 #include "litamin2/dds/pointcloud2_conversion.hpp"
+#include "litamin2/service/log_rate_limiter.hpp"
 
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 
@@ -49,11 +49,11 @@ class PointsListener : public eprosima::fastdds::dds::DataReaderListener {
   const StreamScheduler::Handle handle_;
   StreamStats& stats_;
   const dds::CloudConversionOptions options_;
-  LogRateLimiter bad_message_log_;
-  LogRateLimiter out_of_order_log_;
+  service::LogRateLimiter bad_message_log_;
+  service::LogRateLimiter out_of_order_log_;
   /// The stamp of the last accepted scan (none before the first, or after a new publisher).
   std::mutex stamp_mutex_;
-  std::optional<std::pair<std::int32_t, std::uint32_t>> last_stamp_;
+  std::optional<Stamp> last_stamp_;
   std::atomic<std::uint64_t> sequence_{0};
   std::atomic<std::uint64_t> samples_lost_{0};
 };

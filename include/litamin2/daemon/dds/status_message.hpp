@@ -27,13 +27,8 @@ struct StreamStatus {
   std::string message = "ok";
 };
 
-/// One key/value pair of a DiagnosticStatus.
-diagnostic_msgs::msg::KeyValue key_value(const char* key, const std::string& value);
-/// `value` with `decimals` digits after the point (printf's %.*f).
-std::string fixed_number(double value, int decimals);
-
-/// The DiagnosticArray of `streams`, stamped with wall-clock time `stamp_seconds`.
+/// The DiagnosticArray of `streams`, stamped `stamp` (the wall clock).
 diagnostic_msgs::msg::DiagnosticArray make_status_message(const std::vector<StreamStatus>& streams,
-                                                          double stamp_seconds);
+                                                          Stamp stamp);
 
 }  // namespace litamin2::daemon

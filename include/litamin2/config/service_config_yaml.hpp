@@ -1,0 +1,25 @@
+#pragma once
+/// The sections both processes' configs share: `dds:` (TransportConfig), `watchdog:`
+/// (WatchdogConfig) and `log_level`.
+
+#include "litamin2/config/yaml_section.hpp"
+#include "litamin2/service/transport_config.hpp"
+#include "litamin2/service/watchdog_config.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+
+namespace litamin2::service {
+
+/// Reads a `dds:` section (a null node gives the defaults); errors name keys as dds.<key>. An
+/// xml profile needs a readable xml_file and an xml_profile; other profiles take neither.
+TransportConfig transport_config_from_yaml(const YAML::Node& node);
+
+/// Reads a `watchdog:` section; stall_timeout_s must lie in [0.1, max_stall_timeout_s].
+WatchdogConfig watchdog_config_from_yaml(const YAML::Node& node, double max_stall_timeout_s);
+
+/// Reads the `log_level` key of `section` into `level` (one of kLogLevels).
+void read_log_level(config::YamlSection& section, std::string& level);
+
+}  // namespace litamin2::service

@@ -1,0 +1,176 @@
+#include "litamin2/config/daemon_config_yaml.hpp"
+
+#include "litamin2/config/config_file.hpp"
+#include "litamin2/config/service_config_yaml.hpp"
+#include "litamin2/config/tracker_config_yaml.hpp"
+#include "litamin2/config/yaml_section.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <optional>
+
+namespace litamin2::daemon {
+
+using config::load_config_file;
+using config::read_section;
+using config::yaml_text;
+using config::YamlSection;
+
+namespace {
+
+/// `over` merged into a copy of `base`: mappings key by key, anything else replaced.
+YAML::Node merge(const YAML::Node& base, const YAML::Node& over) {
+  if (!over || over.IsNull()) return base ? YAML::Clone(base) : YAML::Node();
+  if (!base || !base.IsMap() || !over.IsMap()) return YAML::Clone(over);
+  YAML::Node out = YAML::Clone(base);
+  for (const auto& entry : over) {
+    const std::string key = entry.first.as<std::string>();
+    out[key] = merge(base[key], entry.second);
+  }
+  return out;
+}
+
+/// Parses a tracker section, naming keys relative to `path` in errors.
+TrackerConfig parse_tracker(const YAML::Node& node, const std::string& path) {
+  return read_section(path, [&] { return tracker_config_from_yaml(node); });
+}
+
+std::vector<double> numbers(const YAML::Node& node, const std::string& path) {
+  std::vector<double> out;
+  if (!node.IsSequence()) throw ConfigError(path + ": expected a list of numbers");
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string item = path + "[" + std::to_string(i) + "]";
+    if (node[i].IsSequence()) {
+      for (double v : numbers(node[i], item)) out.push_back(v);
+      continue;
+    }
+    try {
+      out.push_back(node[i].as<double>());
+    } catch (const YAML::Exception&) {
+      throw ConfigError(item + ": cannot read '" + yaml_text(node[i]) + "' as a number");
+    }
+    if (!std::isfinite(out.back()))
+      throw ConfigError(item + ": " + yaml_text(node[i]) + " is not finite");
+  }
+  return out;
+}
+
+/// A 4x4 matrix (16 numbers, row-major, flat or as 4 rows) or {xyz: [x, y, z], rpy: [r, p, y]}
+/// (radians; R = Rz(yaw) Ry(pitch) Rx(roll)) or rpy_deg.
+Eigen::Isometry3d parse_extrinsic(const YAML::Node& node, const std::string& path) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  if (node.IsSequence()) {
+    const std::vector<double> v = numbers(node, path);
+    if (v.size() != 16)
+      throw ConfigError(path + ": expected 16 numbers (a 4x4 matrix, row-major), got " +
+                        std::to_string(v.size()));
+    Eigen::Matrix4d m;
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) m(r, c) = v[r * 4 + c];
+    if ((m.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff() > 1e-9)
+      throw ConfigError(path + ": the last row of the matrix must be 0 0 0 1");
+    const Eigen::Matrix3d r = m.topLeftCorner<3, 3>();
+    if ((r.transpose() * r - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-6 ||
+        r.determinant() < 0)
+      throw ConfigError(path + ": the top-left 3x3 block is not a rotation matrix");
+    pose.matrix() = m;
+    return pose;
+  }
+  YamlSection s(node, path);
+  if (!node.IsMap()) throw ConfigError(path + ": expected a 4x4 matrix or {xyz, rpy}");
+  auto vec3 = [&](const std::string& key) -> std::optional<Eigen::Vector3d> {
+    const YAML::Node child = s.child(key);
+    if (!child) return std::nullopt;
+    const std::vector<double> v = numbers(child, s.name(key));
+    if (v.size() != 3)
+      throw ConfigError(s.name(key) + ": expected 3 numbers, got " + std::to_string(v.size()));
+    return Eigen::Vector3d(v[0], v[1], v[2]);
+  };
+  const auto xyz = vec3("xyz");
+  const auto rpy = vec3("rpy");
+  const auto rpy_deg = vec3("rpy_deg");
+  s.reject_unknown();
+  if (rpy && rpy_deg) throw ConfigError(path + ": give rpy (radians) or rpy_deg, not both");
+  Eigen::Vector3d angles = rpy       ? *rpy
+                           : rpy_deg ? Eigen::Vector3d(*rpy_deg * M_PI / 180.0)
+                                     : Eigen::Vector3d::Zero();
+  pose.linear() = (Eigen::AngleAxisd(angles.z(), Eigen::Vector3d::UnitZ()) *
+                   Eigen::AngleAxisd(angles.y(), Eigen::Vector3d::UnitY()) *
+                   Eigen::AngleAxisd(angles.x(), Eigen::Vector3d::UnitX()))
+                      .toRotationMatrix();
+  if (xyz) pose.translation() = *xyz;
+  return pose;
+}
+
+}  // namespace
+
+DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
+  DaemonConfig config;
+  if (!node || node.IsNull()) throw ConfigError("config: empty; give streams or discovery");
+  YamlSection root(node, "");
+
+  config.dds = service::transport_config_from_yaml(root.child("dds"));
+
+  // tracker (global); kept as YAML so streams can override single keys.
+  const YAML::Node tracker_node = root.child("tracker");
+  config.tracker = parse_tracker(tracker_node, "tracker");
+
+  {
+    YamlSection discovery(root.child("discovery"), "discovery");
+    discovery.read("enabled", config.discovery.enabled);
+    discovery.read("pattern", config.discovery.pattern);
+    discovery.read_range("max_streams", config.discovery.max_streams, 1, 4096);
+    discovery.reject_unknown();
+  }
+
+  const YAML::Node streams = root.child("streams");
+  if (streams && !streams.IsNull()) {
+    if (!streams.IsSequence())
+      throw ConfigError("streams: expected a list of streams, got '" + yaml_text(streams) + "'");
+    for (std::size_t i = 0; i < streams.size(); ++i) {
+      const std::string path = "streams[" + std::to_string(i) + "]";
+      if (!streams[i].IsMap()) throw ConfigError(path + ": expected a mapping with at least an id");
+      YamlSection s(streams[i], path);
+      StreamConfig stream;
+      if (!s.read("id", stream.id)) throw ConfigError(path + ".id: required");
+      if (!s.read("topic", stream.topic)) stream.topic = "rt/" + stream.id + "/points";
+      const YAML::Node extrinsic = s.child("extrinsic");
+      if (extrinsic && !extrinsic.IsNull())
+        stream.extrinsic = parse_extrinsic(extrinsic, path + ".extrinsic");
+      const YAML::Node overrides = s.child("tracker");
+      if (overrides && !overrides.IsNull() && !overrides.IsMap())
+        throw ConfigError(path + ".tracker: expected a mapping of tracker keys");
+      stream.tracker = parse_tracker(merge(tracker_node, overrides), path + ".tracker");
+      s.reject_unknown();
+      config.streams.push_back(std::move(stream));
+    }
+  }
+
+  root.read_range("threads", config.threads, 0, 1024);
+  root.read_range("queue_depth", config.queue_depth, 1, 10000);
+  root.read_range("shutdown_timeout_s", config.shutdown_timeout_s, 0.0, 60.0);
+
+  {
+    YamlSection outputs(root.child("outputs"), "outputs");
+    outputs.read("odom_suffix", config.outputs.odom_suffix);
+    outputs.read("map_patches_topic", config.outputs.map_patches_topic);
+    outputs.read("status_topic", config.outputs.status_topic);
+    outputs.read_range("status_period_s", config.outputs.status_period_s, 0.01, 3600.0);
+    outputs.read_range("map_patch_history", config.outputs.map_patch_history, 1, 1'000'000);
+    outputs.read("odom_frame", config.outputs.odom_frame);
+    outputs.reject_unknown();
+  }
+
+  config.watchdog = service::watchdog_config_from_yaml(root.child("watchdog"), 3600.0);
+  service::read_log_level(root, config.log_level);
+  root.reject_unknown();
+  validate(config);
+  return config;
+}
+
+DaemonConfig load_daemon_config(const std::string& path) {
+  return load_config_file(path, daemon_config_from_yaml);
+}
+
+}  // namespace litamin2::daemon

@@ -1,0 +1,123 @@
+#include "litamin2/config/mapper_config_yaml.hpp"
+
+#include "litamin2/config/config_file.hpp"
+#include "litamin2/config/yaml_section.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+namespace litamin2::mapping {
+
+using config::load_config_file;
+using config::YamlSection;
+
+MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
+  MapperConfig config;
+  YamlSection root(node, "");
+
+  YamlSection place(root.child("place_recognition"), "place_recognition");
+  PlaceRecognitionConfig& p = config.place;
+  place.read_range("rings", p.rings, 2, 200);
+  place.read_range("sectors", p.sectors, 4, 720);
+  place.read_range("max_range", p.max_range, 1.0, 1000.0);
+  place.read_range("ring_key_candidates", p.ring_key_candidates, 1, 1000);
+  place.read_range("max_descriptor_distance", p.max_descriptor_distance, 0.0, 1.0);
+  place.read_range("min_travel_gap", p.min_travel_gap, 0.0, 1e6);
+  place.read_range("proximity_radius", p.proximity_radius, 0.0, 1e4);
+  place.reject_unknown();
+
+  YamlSection verification(root.child("verification"), "verification");
+  LoopVerificationConfig& v = config.verification;
+  verification.read_range("submap_neighbours", v.submap_neighbours, 0, 100);
+  verification.read_range("sigma_icp", v.sigma_icp, 1e-3, 100.0);
+  verification.read_range("max_isotropy", v.max_isotropy, 1e-6, 1.0);
+  verification.read_range("fitness_distance", v.fitness_distance, 1e-3, 100.0);
+  verification.read_range("min_fitness", v.min_fitness, 0.0, 1.0);
+  verification.read_range("max_rmse", v.max_rmse, 1e-3, 100.0);
+  verification.read_range("rotation_sigma_deg", v.rotation_sigma_deg, 1e-4, 180.0);
+  verification.read_range("translation_sigma", v.translation_sigma, 1e-4, 100.0);
+  verification.reject_unknown();
+
+  YamlSection graph(root.child("pose_graph"), "pose_graph");
+  PoseGraphConfig& g = config.graph;
+  graph.read_enum<OdometryCovariance>(
+      "odometry_covariance", g.odometry_covariance,
+      {{"distance", OdometryCovariance::Distance}, {"tracker", OdometryCovariance::Tracker}});
+  graph.read_range("tracker_covariance_scale", g.tracker_covariance_scale, 1e-3, 1e6);
+  graph.read_range("tracker_translation_sigma_min", g.tracker_translation_sigma_min, 1e-6, 100.0);
+  graph.read_range("tracker_rotation_sigma_min_deg", g.tracker_rotation_sigma_min_deg, 1e-6, 180.0);
+  graph.read_range("odometry_translation_sigma_per_m", g.odometry_translation_sigma_per_m, 1e-6,
+                   10.0);
+  graph.read_range("odometry_rotation_sigma_deg_per_m", g.odometry_rotation_sigma_deg_per_m, 1e-6,
+                   180.0);
+  graph.read_range("odometry_translation_sigma_min", g.odometry_translation_sigma_min, 1e-6, 100.0);
+  graph.read_range("odometry_rotation_sigma_min_deg", g.odometry_rotation_sigma_min_deg, 1e-6,
+                   180.0);
+  graph.read_range("loop_loss_scale", g.loop_loss_scale, 1e-3, 1e3);
+  graph.read_range("loop_consistency_sigmas", g.loop_consistency_sigmas, 0.1, 1e6);
+  graph.read_range("level_prior_sigma_deg", g.level_prior_sigma_deg, 0.0, 90.0);
+  graph.read_range("max_iterations", g.max_iterations, 1, 10000);
+  graph.read_range("threads", g.threads, 1, 256);
+  graph.reject_unknown();
+
+  root.read_range("map_voxel_size", config.map_voxel_size, 0.05, 100.0);
+  root.reject_unknown();
+  return config;
+}
+
+MapperConfig load_mapper_config(const std::string& path) {
+  return load_config_file(path, [](const YAML::Node& node) {
+    return mapper_config_from_yaml(node.IsMap() && node["mapper"] ? node["mapper"] : node);
+  });
+}
+
+std::string mapper_config_to_yaml(const MapperConfig& c) {
+  YAML::Emitter out;
+  out.SetDoublePrecision(12);
+  out << YAML::BeginMap;
+  out << YAML::Key << "place_recognition" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "rings" << YAML::Value << c.place.rings;
+  out << YAML::Key << "sectors" << YAML::Value << c.place.sectors;
+  out << YAML::Key << "max_range" << YAML::Value << c.place.max_range;
+  out << YAML::Key << "ring_key_candidates" << YAML::Value << c.place.ring_key_candidates;
+  out << YAML::Key << "max_descriptor_distance" << YAML::Value << c.place.max_descriptor_distance;
+  out << YAML::Key << "min_travel_gap" << YAML::Value << c.place.min_travel_gap;
+  out << YAML::Key << "proximity_radius" << YAML::Value << c.place.proximity_radius;
+  out << YAML::EndMap;
+  out << YAML::Key << "verification" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "submap_neighbours" << YAML::Value << c.verification.submap_neighbours;
+  out << YAML::Key << "sigma_icp" << YAML::Value << c.verification.sigma_icp;
+  out << YAML::Key << "max_isotropy" << YAML::Value << c.verification.max_isotropy;
+  out << YAML::Key << "fitness_distance" << YAML::Value << c.verification.fitness_distance;
+  out << YAML::Key << "min_fitness" << YAML::Value << c.verification.min_fitness;
+  out << YAML::Key << "max_rmse" << YAML::Value << c.verification.max_rmse;
+  out << YAML::Key << "rotation_sigma_deg" << YAML::Value << c.verification.rotation_sigma_deg;
+  out << YAML::Key << "translation_sigma" << YAML::Value << c.verification.translation_sigma;
+  out << YAML::EndMap;
+  out << YAML::Key << "pose_graph" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "odometry_covariance" << YAML::Value
+      << (c.graph.odometry_covariance == OdometryCovariance::Tracker ? "tracker" : "distance");
+  out << YAML::Key << "tracker_covariance_scale" << YAML::Value << c.graph.tracker_covariance_scale;
+  out << YAML::Key << "tracker_translation_sigma_min" << YAML::Value
+      << c.graph.tracker_translation_sigma_min;
+  out << YAML::Key << "tracker_rotation_sigma_min_deg" << YAML::Value
+      << c.graph.tracker_rotation_sigma_min_deg;
+  out << YAML::Key << "odometry_translation_sigma_per_m" << YAML::Value
+      << c.graph.odometry_translation_sigma_per_m;
+  out << YAML::Key << "odometry_rotation_sigma_deg_per_m" << YAML::Value
+      << c.graph.odometry_rotation_sigma_deg_per_m;
+  out << YAML::Key << "odometry_translation_sigma_min" << YAML::Value
+      << c.graph.odometry_translation_sigma_min;
+  out << YAML::Key << "odometry_rotation_sigma_min_deg" << YAML::Value
+      << c.graph.odometry_rotation_sigma_min_deg;
+  out << YAML::Key << "loop_loss_scale" << YAML::Value << c.graph.loop_loss_scale;
+  out << YAML::Key << "loop_consistency_sigmas" << YAML::Value << c.graph.loop_consistency_sigmas;
+  out << YAML::Key << "level_prior_sigma_deg" << YAML::Value << c.graph.level_prior_sigma_deg;
+  out << YAML::Key << "max_iterations" << YAML::Value << c.graph.max_iterations;
+  out << YAML::Key << "threads" << YAML::Value << c.graph.threads;
+  out << YAML::EndMap;
+  out << YAML::Key << "map_voxel_size" << YAML::Value << c.map_voxel_size;
+  out << YAML::EndMap;
+  return out.c_str();
+}
+
+}  // namespace litamin2::mapping

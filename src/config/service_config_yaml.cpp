@@ -1,0 +1,54 @@
+#include "litamin2/config/service_config_yaml.hpp"
+
+#include "litamin2/service/logging.hpp"
+
+#include <fstream>
+#include <utility>
+#include <vector>
+
+namespace litamin2::service {
+
+using config::YamlSection;
+
+TransportConfig transport_config_from_yaml(const YAML::Node& node) {
+  TransportConfig config;
+  YamlSection dds(node, "dds");
+  dds.read_range("domain", config.domain, 0, 232);
+  dds.read_enum<TransportProfile>("profile", config.profile,
+                                  {{"loopback", TransportProfile::kLoopback},
+                                   {"shm", TransportProfile::kShm},
+                                   {"default", TransportProfile::kDefault},
+                                   {"xml", TransportProfile::kXml}});
+  dds.read("xml_file", config.xml_file);
+  dds.read("xml_profile", config.xml_profile);
+  dds.reject_unknown();
+  if (config.profile == TransportProfile::kXml) {
+    if (config.xml_file.empty())
+      throw ConfigError("dds.xml_file: required when dds.profile is xml");
+    if (config.xml_profile.empty())
+      throw ConfigError("dds.xml_profile: required when dds.profile is xml");
+    if (!std::ifstream(config.xml_file))
+      throw ConfigError("dds.xml_file: cannot open '" + config.xml_file + "'");
+  } else if (!config.xml_file.empty() || !config.xml_profile.empty()) {
+    throw ConfigError("dds.xml_file: only used with dds.profile: xml (profile is " +
+                      std::string(to_string(config.profile)) + ")");
+  }
+  return config;
+}
+
+WatchdogConfig watchdog_config_from_yaml(const YAML::Node& node, double max_stall_timeout_s) {
+  WatchdogConfig config;
+  YamlSection watchdog(node, "watchdog");
+  watchdog.read("enabled", config.enabled);
+  watchdog.read_range("stall_timeout_s", config.stall_timeout_s, 0.1, max_stall_timeout_s);
+  watchdog.reject_unknown();
+  return config;
+}
+
+void read_log_level(YamlSection& section, std::string& level) {
+  std::vector<std::pair<std::string, std::string>> names;
+  for (const char* name : kLogLevels) names.emplace_back(name, name);
+  section.read_enum<std::string>("log_level", level, names);
+}
+
+}  // namespace litamin2::service

@@ -1,0 +1,139 @@
+// A vehicle's current pose in the map frame (aggregator/dds/map_odometry.hpp): the composition
+// corrected keyframe * inverse(keyframe odometry) * latest odometry on known transforms (a wrong
+// order or inverse fails), the message's frames, covariance and twist, and the relay's
+// behaviour before the first keyframe and with its counters.
+
+#include "litamin2/aggregator/dds/map_odometry.hpp"
+#include "litamin2/aggregator/dds/map_odometry_relay.hpp"
+#include "litamin2/dds/odometry_conversion.hpp"
+#include "litamin2/dds/pose_conversion.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+using namespace litamin2;
+using namespace litamin2::aggregator;
+
+namespace {
+
+Eigen::Isometry3d pose_of(double x, double y, double z, double yaw) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  pose.translation() = Eigen::Vector3d(x, y, z);
+  return pose;
+}
+
+nav_msgs::msg::Odometry odometry_at(const Eigen::Isometry3d& pose, const Matrix6d& left) {
+  nav_msgs::msg::Odometry msg =
+      dds::to_odometry(pose, left, Stamp::from_seconds(12.5), "odom", "car/base_link");
+  msg.twist().twist().linear().x(7.0);
+  msg.twist().twist().angular().z(0.25);
+  return msg;
+}
+
+}  // namespace
+
+TEST(AggregatorMapOdometry, ComposesCorrectedKeyframeWithOdometrySinceIt) {
+  // The keyframe: in the odometry frame at (10, 0, 0) heading +y; the mapper corrected it to
+  // (100, 50, 0) heading -x (a 90 deg turn more). Since the keyframe the vehicle drove 5 m
+  // straight ahead and turned 30 deg left: in the map frame it is 5 m along -x from the
+  // corrected keyframe, at (95, 50, 0), heading -x turned 30 deg left.
+  const Eigen::Isometry3d keyframe_odom = pose_of(10, 0, 0, M_PI / 2);
+  const Eigen::Isometry3d keyframe_corrected = pose_of(100, 50, 0, M_PI);
+  const Eigen::Isometry3d odom = keyframe_odom * pose_of(5, 0, 0, M_PI / 6);
+  ASSERT_TRUE(odom.translation().isApprox(Eigen::Vector3d(10, 5, 0), 1e-12));
+
+  const MapCorrection c{odometry_correction(keyframe_corrected, keyframe_odom), "map"};
+  const nav_msgs::msg::Odometry out = to_map_odometry(odometry_at(odom, Matrix6d::Zero()), c);
+  const Eigen::Isometry3d pose = dds::from_pose_msg(out.pose().pose());
+  EXPECT_LT((pose.translation() - Eigen::Vector3d(95, 50, 0)).norm(), 1e-9);
+  const double yaw = std::atan2(pose.linear()(1, 0), pose.linear()(0, 0));
+  EXPECT_NEAR(yaw, -M_PI + M_PI / 6, 1e-9);
+  EXPECT_EQ(out.header().frame_id(), "map");
+  EXPECT_EQ(out.child_frame_id(), "car/base_link");
+  EXPECT_EQ(out.header().stamp().sec(), 12);
+  EXPECT_EQ(out.header().stamp().nanosec(), 500'000'000u);
+  // The twist is in the child frame: unchanged.
+  EXPECT_DOUBLE_EQ(out.twist().twist().linear().x(), 7.0);
+  EXPECT_DOUBLE_EQ(out.twist().twist().angular().z(), 0.25);
+}
+
+TEST(AggregatorMapOdometry, CovarianceTurnsWithTheCorrection) {
+  // Position uncertainty only along the odometry frame's x; the correction turns that frame by
+  // 90 deg about z (and moves it): in the map frame the uncertainty is along y.
+  Matrix6d left = Matrix6d::Zero();
+  left(3, 3) = 0.04;  // tau_x
+  left(4, 4) = 1e-6;
+  left(5, 5) = 1e-6;
+  const Eigen::Isometry3d odom = Eigen::Isometry3d::Identity();
+  const MapCorrection c{pose_of(0, 0, 0, M_PI / 2), "map"};
+  const nav_msgs::msg::Odometry out = to_map_odometry(odometry_at(odom, left), c);
+  const auto& cov = out.pose().covariance();  // ROS order: x, y, z, rx, ry, rz; row-major
+  EXPECT_NEAR(cov[0 * 6 + 0], 1e-6, 1e-12);
+  EXPECT_NEAR(cov[1 * 6 + 1], 0.04, 1e-12);
+  EXPECT_NEAR(cov[2 * 6 + 2], 1e-6, 1e-12);
+}
+
+TEST(AggregatorMapOdometry, MapCorrectionFrameFollowsTheMerge) {
+  StreamPoses poses;
+  poses.stream = "car_2";
+  poses.anchor = "car_2";
+  poses.correction = pose_of(1, 2, 3, 0.5);
+  EXPECT_EQ(map_correction(poses).frame_id, "car_2/odom");
+  poses.anchor = "car_1";
+  poses.in_map_frame = true;
+  const MapCorrection c = map_correction(poses);
+  EXPECT_EQ(c.frame_id, "map");
+  EXPECT_TRUE(c.correction.isApprox(poses.correction, 0.0));
+}
+
+TEST(AggregatorMapOdometryRelay, NothingBeforeTheFirstKeyframeThenTheLatest) {
+  MapOdometryRelay relay;
+  std::vector<nav_msgs::msg::Odometry> published;
+  relay.add_stream("car", [&](const nav_msgs::msg::Odometry& m) { published.push_back(m); });
+  using Clock = MapOdometryRelay::Clock;
+  const Clock::time_point t0 = Clock::now();
+  const Matrix6d zero = Matrix6d::Zero();
+
+  relay.offer("car", odometry_at(pose_of(1, 0, 0, 0), zero), t0);
+  relay.flush();
+  EXPECT_TRUE(published.empty());  // no keyframe yet: no correction
+
+  relay.set_correction("car", {pose_of(0, 10, 0, 0), "map"});
+  // Two messages before the publisher runs: only the latest is published.
+  relay.offer("car", odometry_at(pose_of(2, 0, 0, 0), zero), t0 + std::chrono::milliseconds(100));
+  relay.offer("car", odometry_at(pose_of(3, 0, 0, 0), zero), t0 + std::chrono::milliseconds(200));
+  relay.flush();
+  ASSERT_EQ(published.size(), 1u);
+  const Eigen::Vector3d p = dds::from_pose_msg(published[0].pose().pose()).translation();
+  EXPECT_LT((p - Eigen::Vector3d(3, 10, 0)).norm(), 1e-12);
+  relay.flush();
+  EXPECT_EQ(published.size(), 1u);
+
+  // 11 messages over 1 s: 10 Hz.
+  for (int i = 1; i <= 10; ++i)
+    relay.offer("car", odometry_at(pose_of(3, 0, 0, 0), zero),
+                t0 + std::chrono::milliseconds(200 + 100 * i));
+  const auto s = relay.status(t0 + std::chrono::milliseconds(1500)).at("car");
+  EXPECT_EQ(s.received, 13u);
+  EXPECT_EQ(s.before_keyframe, 1u);
+  EXPECT_EQ(s.published, 1u);
+  EXPECT_NEAR(s.rate_hz, 10.0, 1e-9);
+  EXPECT_NEAR(s.last_seen_s, 0.3, 1e-9);
+  EXPECT_EQ(s.frame_id, "map");
+  // Silent for longer than the rate window: rate 0.
+  EXPECT_EQ(relay.status(t0 + std::chrono::seconds(5)).at("car").rate_hz, 0.0);
+}
+
+TEST(AggregatorMapOdometryRelay, PublishesFromItsThreadAndDrainsOnStop) {
+  MapOdometryRelay relay;
+  std::atomic<int> published{0};
+  relay.add_stream("car", [&](const nav_msgs::msg::Odometry&) { ++published; });
+  relay.set_correction("car", {Eigen::Isometry3d::Identity(), "map"});
+  relay.start();
+  relay.offer("car", odometry_at(pose_of(1, 0, 0, 0), Matrix6d::Zero()));
+  relay.stop();
+  EXPECT_EQ(published.load(), 1);
+  EXPECT_EQ(relay.status().at("car").published, 1u);
+}

@@ -1,0 +1,104 @@
+// AggregatorConfig from YAML: defaults, every section, and errors naming the key.
+
+#include "litamin2/config/aggregator_config_yaml.hpp"
+#include "litamin2/core/config_error.hpp"
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+using namespace litamin2;
+using namespace litamin2::aggregator;
+using service::TransportProfile;
+
+namespace {
+
+void expect_error(const std::string& yaml, const std::string& expected) {
+  try {
+    aggregator_config_from_yaml(YAML::Load(yaml));
+    ADD_FAILURE() << "accepted: " << yaml;
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+
+TEST(AggregatorConfig, DefaultsFromEmptyFile) {
+  const AggregatorConfig c = aggregator_config_from_yaml(YAML::Node());
+  EXPECT_EQ(c.dds.domain, 0);
+  EXPECT_EQ(c.dds.profile, TransportProfile::kLoopback);
+  EXPECT_EQ(c.store.path, "/var/lib/litamin2/aggregator.db");
+  EXPECT_EQ(c.topics.map_patches, "rt/litamin2/map_patches");
+  EXPECT_EQ(c.log_level, "info");
+}
+
+TEST(AggregatorConfig, ShippedDefaultLoads) {
+  const AggregatorConfig c =
+      load_aggregator_config(LITAMIN2_SOURCE_DIR "/config/litamin2-aggregator.yaml");
+  EXPECT_EQ(c.dds.profile, TransportProfile::kLoopback);
+  EXPECT_EQ(c.dds.domain, 0);
+  EXPECT_EQ(c.store.path, "/var/lib/litamin2/aggregator.db");
+}
+
+TEST(AggregatorConfig, ReadsEverySection) {
+  const AggregatorConfig c = aggregator_config_from_yaml(YAML::Load(R"(
+dds: {domain: 7, profile: shm}
+topics: {map_patches: rt/x/patches, keyframe_poses: rt/x/poses, map_summary: rt/x/sum, status: rt/x/st}
+store: {path: /tmp/a.db, synchronous_full: true}
+ingest: {queue_capacity: 10, max_batch: 3}
+publish: {poses_period_s: 0.5, summary_period_s: 2, summary_max_means: 0, status_period_s: 0.25}
+mapper: {map_voxel_size: 2.0, pose_graph: {max_iterations: 7}}
+watchdog: {enabled: false, stall_timeout_s: 5}
+log_level: debug
+)"));
+  EXPECT_EQ(c.dds.domain, 7);
+  EXPECT_EQ(c.dds.profile, TransportProfile::kShm);
+  EXPECT_EQ(c.topics.keyframe_poses, "rt/x/poses");
+  EXPECT_TRUE(c.store.synchronous_full);
+  EXPECT_EQ(c.ingest.max_batch, 3);
+  EXPECT_EQ(c.publish.summary_max_means, 0);
+  EXPECT_DOUBLE_EQ(c.mapper.map_voxel_size, 2.0);
+  EXPECT_EQ(c.mapper.graph.max_iterations, 7);
+  EXPECT_FALSE(c.watchdog.enabled);
+  EXPECT_EQ(c.log_level, "debug");
+}
+
+TEST(AggregatorConfig, ErrorsNameTheKey) {
+  expect_error("dds: {domain: 300}", "dds.domain: 300 is out of range");
+  expect_error("dds: {profile: tcp}", "dds.profile: 'tcp' is not one of");
+  expect_error("dds: {profile: xml}", "dds.xml_file: required");
+  expect_error("store: {path: ''}", "store.path: must not be empty");
+  expect_error("store: {pth: x}", "store.pth: unknown key");
+  expect_error("ingest: {max_batch: 0}", "ingest.max_batch: 0 is out of range");
+  expect_error("publish: {status_period_s: abc}", "publish.status_period_s: cannot read 'abc'");
+  expect_error("mapper: {map_voxel_size: -1}", "mapper.map_voxel_size: -1 is out of range");
+  expect_error("mapper: {pose_graph: {bogus: 1}}", "mapper.pose_graph.bogus: unknown key");
+  expect_error("topics: {status: rt/litamin2/map_patches}", "topics: the four topics");
+  expect_error("topics: {status: 'a b'}", "topics.status: 'a b' is not a valid topic name");
+  expect_error("log_level: loud", "log_level: 'loud' is not one of");
+  expect_error("colour: red", "colour: unknown key");
+}
+
+TEST(AggregatorConfig, FileErrorsNameTheFile) {
+  try {
+    load_aggregator_config("/nonexistent/agg.yaml");
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/agg.yaml: cannot open"), std::string::npos);
+  }
+}
+
+TEST(AggregatorConfig, OdometryTopicPatterns) {
+  const AggregatorConfig d = aggregator_config_from_yaml(YAML::Node());
+  EXPECT_EQ(d.topics.odometry, "rt/*/odom");
+  EXPECT_EQ(d.topics.map_odometry, "rt/*/map_odom");
+  const AggregatorConfig c = aggregator_config_from_yaml(
+      YAML::Load("topics: {odometry: 'rt/fleet/*/odom', map_odometry: 'rt/map/*/pose'}"));
+  EXPECT_EQ(c.topics.odometry, "rt/fleet/*/odom");
+  EXPECT_EQ(c.topics.map_odometry, "rt/map/*/pose");
+  EXPECT_TRUE(
+      aggregator_config_from_yaml(YAML::Load("topics: {odometry: ''}")).topics.odometry.empty());
+  expect_error("topics: {odometry: 'rt/odom'}", "topics.odometry");
+  expect_error("topics: {map_odometry: 'rt/*/*/pose'}", "topics.map_odometry");
+  expect_error("topics: {odometry: 'rt/*/x', map_odometry: 'rt/*/x'}", "must be different");
+}

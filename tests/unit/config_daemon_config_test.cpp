@@ -1,0 +1,190 @@
+// Daemon config: the shipped default, every section, tracker overrides, extrinsics, and
+// validation errors that name the key and the value.
+
+#include "litamin2/config/daemon_config_yaml.hpp"
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <fstream>
+
+using namespace litamin2;
+using namespace litamin2::daemon;
+using service::TransportProfile;
+
+namespace {
+
+DaemonConfig parse(const std::string& text) {
+  return daemon_config_from_yaml(YAML::Load(text));
+}
+
+/// The ConfigError message of parsing `text` ("" if it parses).
+std::string error_of(const std::string& text) {
+  try {
+    parse(text);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(DaemonConfig, ShippedDefaultDiscoversOnLoopback) {
+  const DaemonConfig c = load_daemon_config(LITAMIN2_SOURCE_DIR "/config/litamin2d.yaml");
+  EXPECT_EQ(c.dds.domain, 0);
+  EXPECT_EQ(c.dds.profile, TransportProfile::kLoopback);
+  EXPECT_TRUE(c.discovery.enabled);
+  EXPECT_EQ(c.discovery.pattern, "rt/*/points");
+  EXPECT_TRUE(c.streams.empty());
+  EXPECT_EQ(c.queue_depth, 4);
+  EXPECT_EQ(c.outputs.status_topic, "rt/litamin2/status");
+  EXPECT_EQ(c.log_level, "info");
+}
+
+TEST(DaemonConfig, FullConfig) {
+  const DaemonConfig c = parse(R"(
+dds: {domain: 7, profile: shm}
+tracker: {voxelizer: {voxel_size: 2.5}, keyframe: {distance: 2}}
+streams:
+  - id: car1
+  - id: car2
+    topic: rt/sensors/car2/points
+    extrinsic: {xyz: [1, 2, 3], rpy_deg: [0, 0, 90]}
+    tracker: {keyframe: {distance: 0.5}}
+  - id: fleet/car3
+    extrinsic: [1, 0, 0, 0.5,  0, 1, 0, 0,  0, 0, 1, 1.5,  0, 0, 0, 1]
+discovery: {enabled: false}
+threads: 3
+queue_depth: 9
+outputs: {odom_suffix: odometry, status_period_s: 0.5, map_patch_history: 50}
+watchdog: {enabled: false, stall_timeout_s: 3}
+log_level: debug
+shutdown_timeout_s: 0.5
+)");
+  EXPECT_EQ(c.dds.domain, 7);
+  EXPECT_EQ(c.dds.profile, TransportProfile::kShm);
+  ASSERT_EQ(c.streams.size(), 3u);
+  EXPECT_EQ(c.streams[0].topic, "rt/car1/points");
+  EXPECT_EQ(c.streams[1].topic, "rt/sensors/car2/points");
+  EXPECT_EQ(c.streams[2].topic, "rt/fleet/car3/points");
+  // Global tracker section, and the stream's override merged over it key by key.
+  EXPECT_EQ(c.tracker.voxelizer.voxel_size, 2.5);
+  EXPECT_EQ(c.streams[0].tracker.keyframe.distance, 2.0);
+  EXPECT_EQ(c.streams[1].tracker.voxelizer.voxel_size, 2.5);
+  EXPECT_EQ(c.streams[1].tracker.keyframe.distance, 0.5);
+  EXPECT_EQ(c.streams[1].tracker.keyframe.angle_deg, TrackerConfig().keyframe.angle_deg);
+  // Extrinsics.
+  EXPECT_TRUE(c.streams[0].extrinsic.matrix().isIdentity());
+  EXPECT_TRUE(c.streams[1].extrinsic.translation().isApprox(Eigen::Vector3d(1, 2, 3)));
+  EXPECT_TRUE((c.streams[1].extrinsic.linear() * Eigen::Vector3d::UnitX())
+                  .isApprox(Eigen::Vector3d::UnitY(), 1e-12));
+  EXPECT_TRUE(c.streams[2].extrinsic.translation().isApprox(Eigen::Vector3d(0.5, 0, 1.5)));
+  EXPECT_FALSE(c.discovery.enabled);
+  EXPECT_EQ(c.threads, 3);
+  EXPECT_EQ(c.queue_depth, 9);
+  EXPECT_EQ(c.outputs.odom_suffix, "odometry");
+  EXPECT_EQ(c.outputs.status_period_s, 0.5);
+  EXPECT_EQ(c.outputs.map_patch_history, 50);
+  EXPECT_EQ(c.outputs.map_patches_topic, "rt/litamin2/map_patches");
+  EXPECT_FALSE(c.watchdog.enabled);
+  EXPECT_EQ(c.watchdog.stall_timeout_s, 3.0);
+  EXPECT_EQ(c.log_level, "debug");
+  EXPECT_EQ(c.shutdown_timeout_s, 0.5);
+}
+
+TEST(DaemonConfig, ExtrinsicAsRows) {
+  const DaemonConfig c = parse(R"(
+streams:
+  - id: a
+    extrinsic: [[0, -1, 0, 1], [1, 0, 0, 2], [0, 0, 1, 3], [0, 0, 0, 1]]
+)");
+  EXPECT_TRUE(c.streams[0].extrinsic.translation().isApprox(Eigen::Vector3d(1, 2, 3)));
+  EXPECT_EQ(c.streams[0].extrinsic.linear()(0, 1), -1.0);
+}
+
+TEST(DaemonConfig, XmlProfile) {
+  const std::string xml = ::testing::TempDir() + "/daemon_config_test_profile.xml";
+  std::ofstream(xml) << "<dds/>\n";
+  const DaemonConfig c = parse("dds: {profile: xml, xml_file: " + xml +
+                               ", xml_profile: p}\ndiscovery: {enabled: true}");
+  EXPECT_EQ(c.dds.profile, TransportProfile::kXml);
+  EXPECT_EQ(c.dds.xml_file, xml);
+  EXPECT_EQ(c.dds.xml_profile, "p");
+}
+
+TEST(DaemonConfig, ErrorsNameKeyAndValue) {
+  const std::string ok = "discovery: {enabled: true}\n";
+  EXPECT_EQ(error_of(ok), "");
+  EXPECT_EQ(error_of(ok + "threds: 2"), "threds: unknown key");
+  EXPECT_EQ(error_of(ok + "threads: many"), "threads: cannot read 'many' as an integer");
+  EXPECT_EQ(error_of(ok + "threads: -1"), "threads: -1 is out of range [0, 1024]");
+  EXPECT_EQ(error_of(ok + "queue_depth: 0"), "queue_depth: 0 is out of range [1, 10000]");
+  EXPECT_EQ(error_of(ok + "dds: {domain: 300}"), "dds.domain: 300 is out of range [0, 232]");
+  EXPECT_EQ(error_of(ok + "dds: {profile: udp}"),
+            "dds.profile: 'udp' is not one of: loopback, shm, default, xml");
+  EXPECT_EQ(error_of(ok + "dds: {profile: xml}"), "dds.xml_file: required when dds.profile is xml");
+  EXPECT_EQ(error_of(ok + "dds: {profile: xml, xml_file: /nonexistent.xml, xml_profile: p}"),
+            "dds.xml_file: cannot open '/nonexistent.xml'");
+  EXPECT_EQ(error_of(ok + "dds: {colour: red}"), "dds.colour: unknown key");
+  EXPECT_EQ(error_of(ok + "log_level: loud"),
+            "log_level: 'loud' is not one of: trace, debug, info, warn, error, critical, off");
+  EXPECT_EQ(error_of("discovery: {enabled: true, pattern: rt/points}"),
+            "discovery.pattern: topic pattern 'rt/points' has no '*'");
+  EXPECT_EQ(error_of("discovery: {enabled: false}"),
+            "streams: no streams configured and discovery.enabled is false");
+  EXPECT_EQ(error_of(ok + "tracker: {voxelizer: {voxel_size: big}}"),
+            "tracker.voxelizer.voxel_size: cannot read 'big' as a number");
+  EXPECT_EQ(error_of(ok + "tracker: {voxeliser: {}}"), "tracker.voxeliser: unknown key");
+  EXPECT_EQ(error_of(ok + "outputs: {status_period_s: 0}"),
+            "outputs.status_period_s: 0 is out of range [0.01, 3600]");
+  EXPECT_EQ(error_of(ok + "outputs: {map_patch_history: 0}"),
+            "outputs.map_patch_history: 0 is out of range [1, 1000000]");
+  EXPECT_EQ(error_of(ok + "watchdog: {enable: true}"), "watchdog.enable: unknown key");
+  EXPECT_EQ(error_of(ok + "streams: {id: a}"),
+            "streams: expected a list of streams, got '{id: a}'");
+}
+
+TEST(DaemonConfig, StreamErrors) {
+  EXPECT_EQ(error_of("streams: [{topic: rt/a/points}]"), "streams[0].id: required");
+  EXPECT_EQ(error_of("streams: [{id: 'bad id'}]"),
+            "streams[0].id: 'bad id' is not a valid stream id: character ' ' is not allowed (only "
+            "letters, digits, '_' and '/')");
+  EXPECT_EQ(error_of("streams: [{id: a}, {id: a}]"), "streams[1].id: duplicate stream id 'a'");
+  EXPECT_EQ(error_of("streams: [{id: a}, {id: b, topic: rt/a/points}]"),
+            "streams[1].topic: 'rt/a/points' is used by another stream");
+  EXPECT_EQ(error_of("streams: [{id: a, topic: 'rt/a points'}]"),
+            "streams[0].topic: 'rt/a points' is not a valid topic name");
+  EXPECT_EQ(error_of("streams: [{id: a, extra: 1}]"), "streams[0].extra: unknown key");
+  EXPECT_EQ(error_of("streams: [{id: a, tracker: {map: {radius: -5}}}]")
+                .rfind("streams[0].tracker.map.radius", 0),
+            0u);
+  EXPECT_EQ(error_of("streams: [{id: a, extrinsic: [1, 2, 3]}]"),
+            "streams[0].extrinsic: expected 16 numbers (a 4x4 matrix, row-major), got 3");
+  EXPECT_EQ(error_of("streams: [{id: a, extrinsic: [2,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}]"),
+            "streams[0].extrinsic: the top-left 3x3 block is not a rotation matrix");
+  EXPECT_EQ(error_of("streams: [{id: a, extrinsic: [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,1,1]}]"),
+            "streams[0].extrinsic: the last row of the matrix must be 0 0 0 1");
+  EXPECT_EQ(error_of("streams: [{id: a, extrinsic: {xyz: [1, 2]}}]"),
+            "streams[0].extrinsic.xyz: expected 3 numbers, got 2");
+  EXPECT_EQ(error_of("streams: [{id: a, extrinsic: {xyz: [1, 2, x]}}]"),
+            "streams[0].extrinsic.xyz[2]: cannot read 'x' as a number");
+  EXPECT_EQ(error_of("streams: [{id: a, extrinsic: {rpy: [0, 0, 0], rpy_deg: [0, 0, 0]}}]"),
+            "streams[0].extrinsic: give rpy (radians) or rpy_deg, not both");
+  EXPECT_EQ(error_of("streams: [{id: a, extrinsic: {quat: [0, 0, 0, 1]}}]"),
+            "streams[0].extrinsic.quat: unknown key");
+}
+
+TEST(DaemonConfig, FileErrorsStartWithTheFileName) {
+  const std::string path = ::testing::TempDir() + "/daemon_config_test_bad.yaml";
+  std::ofstream(path) << "discovery: {enabled: true}\nqueue_depth: -3\n";
+  try {
+    load_daemon_config(path);
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": queue_depth: -3 is out of range [1, 10000]");
+  }
+  EXPECT_THROW(load_daemon_config("/nonexistent/litamin2d.yaml"), ConfigError);
+  std::ofstream(path) << "discovery: [unclosed\n";
+  EXPECT_THROW(load_daemon_config(path), ConfigError);
+}

@@ -1,0 +1,61 @@
+// The mapper's YAML config: the shipped file holds the defaults, the emitted YAML reads back,
+// and bad keys and values are refused with messages naming them.
+
+#include "litamin2/config/mapper_config_yaml.hpp"
+#include "litamin2/core/config_error.hpp"
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+using namespace litamin2;
+using namespace litamin2::mapping;
+
+TEST(MappingConfig, ShippedFileHoldsTheDefaults) {
+  const MapperConfig shipped = load_mapper_config(LITAMIN2_SOURCE_DIR "/config/mapper.yaml");
+  EXPECT_EQ(mapper_config_to_yaml(shipped), mapper_config_to_yaml(MapperConfig{}));
+}
+
+TEST(MappingConfig, EmittedYamlReadsBack) {
+  MapperConfig config;
+  config.place.proximity_radius = 7.5;
+  config.verification.min_fitness = 0.7;
+  config.verification.max_isotropy = 0.05;
+  config.graph.threads = 2;
+  config.graph.odometry_covariance = OdometryCovariance::Distance;
+  config.graph.tracker_covariance_scale = 4.0;
+  const std::string yaml = mapper_config_to_yaml(config);
+  EXPECT_EQ(mapper_config_to_yaml(mapper_config_from_yaml(YAML::Load(yaml))), yaml);
+}
+
+TEST(MappingConfig, BadKeysAndValuesAreNamed) {
+  auto message = [](const std::string& yaml) {
+    try {
+      mapper_config_from_yaml(YAML::Load(yaml));
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message("verification: {min_fitnes: 0.5}").find("verification.min_fitnes"),
+            std::string::npos);
+  EXPECT_NE(message("verification: {min_fitness: 1.5}").find("verification.min_fitness"),
+            std::string::npos);
+  EXPECT_NE(message("verification: {max_isotropy: 0}").find("verification.max_isotropy"),
+            std::string::npos);
+  EXPECT_NE(message("pose_graph: {threads: many}").find("pose_graph.threads"), std::string::npos);
+  EXPECT_NE(message("map_voxel_size: -1").find("map_voxel_size"), std::string::npos);
+  EXPECT_NE(message("pose_graph: {odometry_covariance: hessian}")
+                .find("pose_graph.odometry_covariance: 'hessian' is not one of: distance, tracker"),
+            std::string::npos);
+  EXPECT_NE(message("pose_graph: {tracker_covariance_scale: 0}")
+                .find("pose_graph.tracker_covariance_scale"),
+            std::string::npos);
+}
+
+TEST(MappingConfig, OdometryCovarianceSource) {
+  EXPECT_EQ(MapperConfig{}.graph.odometry_covariance, OdometryCovariance::Tracker);
+  const MapperConfig c = mapper_config_from_yaml(
+      YAML::Load("pose_graph: {odometry_covariance: distance, tracker_covariance_scale: 3}"));
+  EXPECT_EQ(c.graph.odometry_covariance, OdometryCovariance::Distance);
+  EXPECT_DOUBLE_EQ(c.graph.tracker_covariance_scale, 3.0);
+}

@@ -1,0 +1,85 @@
+// TrackerConfig from YAML: defaults, the shipped file, round trip, and errors that name the
+// bad key and value.
+
+#include "litamin2/config/tracker_config_yaml.hpp"
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+namespace litamin2 {
+namespace {
+
+std::string error_of(const std::string& yaml) {
+  try {
+    tracker_config_from_yaml(YAML::Load(yaml));
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(TrackerConfigYaml, EmptyDocumentGivesDefaults) {
+  const TrackerConfig config = tracker_config_from_yaml(YAML::Load("{}"));
+  EXPECT_EQ(config.voxelizer.voxel_size, TrackerConfig{}.voxelizer.voxel_size);
+  EXPECT_EQ(config.registration.mode, CostMode::IcpCov);
+  EXPECT_EQ(config.registration.sigma_icp, 0.1);
+  EXPECT_EQ(config.registration.sigma_cov, 3.0);
+  EXPECT_EQ(config.registration.lambda, 1e-6);
+}
+
+TEST(TrackerConfigYaml, ShippedFileIsTheDefaults) {
+  const TrackerConfig shipped = load_tracker_config(LITAMIN2_SOURCE_DIR "/config/tracker.yaml");
+  EXPECT_EQ(tracker_config_to_yaml(shipped), tracker_config_to_yaml(TrackerConfig{}));
+}
+
+TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
+  TrackerConfig config;
+  config.voxelizer.voxel_size = 2.5;
+  config.voxelizer.regularizer.method = RegularizationMethod::Plane;
+  config.registration.mode = CostMode::Icp;
+  config.registration.cov_energy = CovEnergy::Squared;
+  config.registration.correspondence = CorrespondenceMethod::Voxel27;
+  config.keyframe.angle_deg = 7.25;
+  config.map.radius = 80.0;
+  config.registration.max_isotropy = 0.125;
+  const TrackerConfig back = tracker_config_from_yaml(YAML::Load(tracker_config_to_yaml(config)));
+  EXPECT_EQ(tracker_config_to_yaml(back), tracker_config_to_yaml(config));
+  EXPECT_EQ(back.voxelizer.voxel_size, 2.5);
+  EXPECT_EQ(back.registration.correspondence, CorrespondenceMethod::Voxel27);
+}
+
+TEST(TrackerConfigYaml, ErrorsNameKeyAndValue) {
+  EXPECT_NE(error_of("voxelizer: {voxel_size: -3}").find("voxelizer.voxel_size: -3"),
+            std::string::npos);
+  EXPECT_NE(
+      error_of("voxelizer: {voxel_size: abc}").find("voxelizer.voxel_size: cannot read 'abc'"),
+      std::string::npos);
+  EXPECT_NE(error_of("registration: {mode: gicp}").find("registration.mode: 'gicp' is not one of"),
+            std::string::npos);
+  EXPECT_NE(error_of("registration: {sigma_icpp: 1}").find("registration.sigma_icpp: unknown key"),
+            std::string::npos);
+  EXPECT_NE(error_of("trackr: {}").find("trackr: unknown key"), std::string::npos);
+  EXPECT_NE(error_of("registration: 3").find("registration: expected a mapping"),
+            std::string::npos);
+  EXPECT_NE(error_of("registration: {correspondence: voxel27, max_correspondence_distance: 5}")
+                .find("registration.max_correspondence_distance"),
+            std::string::npos);
+  EXPECT_NE(error_of("registration: {max_isotropy: 0}").find("registration.max_isotropy: 0"),
+            std::string::npos);
+  EXPECT_NE(error_of("registration: {max_isotropy: 1.5}").find("registration.max_isotropy: 1.5"),
+            std::string::npos);
+  EXPECT_NE(error_of("registration: {max_iterations: 0}").find("registration.max_iterations: 0"),
+            std::string::npos);
+}
+
+TEST(TrackerConfigYaml, FileErrorsNameTheFile) {
+  try {
+    load_tracker_config("/nonexistent/tracker.yaml");
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/tracker.yaml"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace litamin2
