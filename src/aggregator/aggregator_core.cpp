@@ -22,7 +22,7 @@ AggregatorCore::AggregatorCore(const std::string& store_path, store::OpenMode mo
     if (progress && ((i + 1) % 100 == 0 || i + 1 == total)) progress(i + 1, total);
   }
   recovered_ = total;
-  if (mapper_.optimize().ran && mode != store::OpenMode::ReadOnly) save_graph();
+  if (mapper_.optimize().ran && mode != store::OpenMode::kReadOnly) save_graph();
 }
 
 IngestResult AggregatorCore::ingest(std::vector<Keyframe>& batch) {
@@ -71,7 +71,7 @@ IngestResult AggregatorCore::ingest(std::vector<Keyframe>& batch) {
     t = now;
     result.streams.insert(keyframe.key.stream);
     result.keys.push_back(keyframe.key);
-    if (mapper_.add_keyframe(std::move(keyframe), &loops) == mapping::AddStatus::Added)
+    if (mapper_.add_keyframe(std::move(keyframe), &loops) == mapping::AddStatus::kAdded)
       ++result.added;
     now = thread_cpu_seconds();
     cpu_.add_keyframe_s += now - t;

@@ -69,7 +69,7 @@ std::vector<std::string> write_trajectories(const std::string& dir, const Stream
 }
 
 ExportResult export_store(const ExportOptions& options) {
-  const AggregatorCore core(options.store, store::OpenMode::ReadOnly, options.mapper, {},
+  const AggregatorCore core(options.store, store::OpenMode::kReadOnly, options.mapper, {},
                             options.progress);
   const mapping::Mapper& mapper = core.mapper();
   ExportResult result;

@@ -41,7 +41,7 @@ MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
   PoseGraphConfig& g = config.graph;
   graph.read_enum<OdometryCovariance>(
       "odometry_covariance", g.odometry_covariance,
-      {{"distance", OdometryCovariance::Distance}, {"tracker", OdometryCovariance::Tracker}});
+      {{"distance", OdometryCovariance::kDistance}, {"tracker", OdometryCovariance::kTracker}});
   graph.read_range("tracker_covariance_scale", g.tracker_covariance_scale, 1e-3, 1e6);
   graph.read_range("tracker_translation_sigma_min", g.tracker_translation_sigma_min, 1e-6, 100.0);
   graph.read_range("tracker_rotation_sigma_min_deg", g.tracker_rotation_sigma_min_deg, 1e-6, 180.0);
@@ -95,7 +95,7 @@ std::string mapper_config_to_yaml(const MapperConfig& c) {
   out << YAML::EndMap;
   out << YAML::Key << "pose_graph" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "odometry_covariance" << YAML::Value
-      << (c.graph.odometry_covariance == OdometryCovariance::Tracker ? "tracker" : "distance");
+      << (c.graph.odometry_covariance == OdometryCovariance::kTracker ? "tracker" : "distance");
   out << YAML::Key << "tracker_covariance_scale" << YAML::Value << c.graph.tracker_covariance_scale;
   out << YAML::Key << "tracker_translation_sigma_min" << YAML::Value
       << c.graph.tracker_translation_sigma_min;

@@ -16,16 +16,16 @@ using config::YamlSection;
 
 namespace {
 
-const std::vector<std::pair<std::string, CostMode>> kModes = {{"icp", CostMode::Icp},
-                                                              {"icp+cov", CostMode::IcpCov}};
+const std::vector<std::pair<std::string, CostMode>> kModes = {{"icp", CostMode::kIcp},
+                                                              {"icp+cov", CostMode::kIcpCov}};
 const std::vector<std::pair<std::string, CovHessian>> kCovHessians = {
-    {"full", CovHessian::Full}, {"gauss_newton", CovHessian::GaussNewton}};
+    {"full", CovHessian::kFull}, {"gauss_newton", CovHessian::kGaussNewton}};
 const std::vector<std::pair<std::string, CovEnergy>> kCovEnergies = {
-    {"squared", CovEnergy::Squared}, {"linear", CovEnergy::Linear}};
+    {"squared", CovEnergy::kSquared}, {"linear", CovEnergy::kLinear}};
 const std::vector<std::pair<std::string, CorrespondenceMethod>> kCorrespondences = {
-    {"voxel27", CorrespondenceMethod::Voxel27}, {"kdtree", CorrespondenceMethod::KdTree}};
+    {"voxel27", CorrespondenceMethod::kVoxel27}, {"kdtree", CorrespondenceMethod::kKdTree}};
 const std::vector<std::pair<std::string, RegularizationMethod>> kRegularizations = {
-    {"eigen_clamp", RegularizationMethod::EigenClamp}, {"plane", RegularizationMethod::Plane}};
+    {"eigen_clamp", RegularizationMethod::kEigenClamp}, {"plane", RegularizationMethod::kPlane}};
 
 template <class Enum>
 std::string enum_name(Enum value, const std::vector<std::pair<std::string, Enum>>& names) {

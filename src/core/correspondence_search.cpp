@@ -7,8 +7,8 @@ std::unique_ptr<CorrespondenceSearch> make_kdtree_search(const VoxelMap& map);
 
 std::unique_ptr<CorrespondenceSearch> make_correspondence_search(CorrespondenceMethod method,
                                                                  const VoxelMap& map) {
-  return method == CorrespondenceMethod::KdTree ? make_kdtree_search(map)
-                                                : make_voxel_neighbor_search(map);
+  return method == CorrespondenceMethod::kKdTree ? make_kdtree_search(map)
+                                                 : make_voxel_neighbor_search(map);
 }
 
 }  // namespace litamin2

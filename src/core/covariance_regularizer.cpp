@@ -11,7 +11,7 @@ namespace {
 Eigen::Vector3d regularized_values(const RegularizerConfig& config, const Eigen::Vector3d& values,
                                    double ratio) {
   const double largest = std::max(values(2), config.min_eigenvalue);
-  if (config.method == RegularizationMethod::Plane) {
+  if (config.method == RegularizationMethod::kPlane) {
     return Eigen::Vector3d(config.plane_epsilon, 1.0, 1.0) * largest;
   }
   return values.cwiseMax(std::max(ratio * largest, config.min_eigenvalue));

@@ -37,7 +37,7 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
   out.gradient += w_icp * icp.gradient;
   out.hessian += w_icp * icp.hessian;
   ++out.correspondences;
-  if (config.mode != CostMode::IcpCov) return;
+  if (config.mode != CostMode::kIcpCov) return;
   if (std::min(source.count, target.count) < config.cov_min_points) return;
 
   // Cov term, Eq. 4: E_cov = f^2 (or f, Table 1), rotation only.
@@ -45,7 +45,7 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
   const Eigen::Matrix3d rotated_shape_inv = rotation * source.shape_cov_inv * rotation.transpose();
   const CovShape shape =
       evaluate_cov_shape(rotated_shape_inv, rotated_shape, target.shape_cov, target.shape_cov_inv);
-  const bool squared = config.cov_energy == CovEnergy::Squared;
+  const bool squared = config.cov_energy == CovEnergy::kSquared;
   const double energy = squared ? shape.f * shape.f : shape.f;
   const double w_cov = robust_weight(energy, config.sigma_cov);
   // dE/df and d2E/df2 of the chosen form: (2f, 2) or (1, 0).
@@ -55,7 +55,7 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
   if (squared) {
     out.hessian.topLeftCorner<3, 3>() += w_cov * 2.0 * shape.gradient * shape.gradient.transpose();
   }
-  if (config.cov_hessian == CovHessian::Full || !squared) {
+  if (config.cov_hessian == CovHessian::kFull || !squared) {
     const Eigen::Matrix3d curvature = w_cov * de_df * shape.hessian;
     out.hessian.topLeftCorner<3, 3>() += curvature;
     out.cov_curvature += curvature;

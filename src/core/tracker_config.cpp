@@ -41,7 +41,7 @@ void validate(const TrackerConfig& c) {
   require(r.lambda >= 0.0, "registration.lambda", r.lambda, "at least 0");
   require(r.max_correspondence_distance >= 0.0, "registration.max_correspondence_distance",
           r.max_correspondence_distance, "at least 0; 0 means one voxel");
-  require(r.correspondence != CorrespondenceMethod::Voxel27 ||
+  require(r.correspondence != CorrespondenceMethod::kVoxel27 ||
               r.max_correspondence_distance <= v.voxel_size,
           "registration.max_correspondence_distance", r.max_correspondence_distance,
           "voxel27 search is exact only up to one voxel edge; use kdtree for more");

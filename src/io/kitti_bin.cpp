@@ -82,8 +82,8 @@ KittiBinLayout detect_layout(const std::string& path, const std::string& bytes) 
   const std::size_t size = bytes.size();
   const bool fits_xyzi = size % 16 == 0;
   const bool fits_xyz = size % 12 == 0;
-  if (fits_xyzi && !fits_xyz) return KittiBinLayout::XYZI;
-  if (fits_xyz && !fits_xyzi) return KittiBinLayout::XYZ;
+  if (fits_xyzi && !fits_xyz) return KittiBinLayout::kXYZI;
+  if (fits_xyz && !fits_xyzi) return KittiBinLayout::kXYZ;
   if (!fits_xyz && !fits_xyzi) {
     throw IoError(path, "size " + std::to_string(size) +
                             " bytes is a multiple of neither 16 (x,y,z,intensity float32) nor 12 "
@@ -91,9 +91,10 @@ KittiBinLayout detect_layout(const std::string& path, const std::string& bytes) 
   }
   const double bad_xyzi = bad_fraction(bytes, 4);
   const double bad_xyz = bad_fraction(bytes, 3);
-  if (bad_xyzi < bad_xyz) return KittiBinLayout::XYZI;
-  if (bad_xyz < bad_xyzi) return KittiBinLayout::XYZ;
-  return median_step(bytes, 3) < median_step(bytes, 4) ? KittiBinLayout::XYZ : KittiBinLayout::XYZI;
+  if (bad_xyzi < bad_xyz) return KittiBinLayout::kXYZI;
+  if (bad_xyz < bad_xyzi) return KittiBinLayout::kXYZ;
+  return median_step(bytes, 3) < median_step(bytes, 4) ? KittiBinLayout::kXYZ
+                                                       : KittiBinLayout::kXYZI;
 }
 
 }  // namespace
@@ -115,8 +116,8 @@ PointCloud read_kitti_bin(const std::string& path, const KittiBinOptions& option
   const std::string bytes = read_file_bytes(path);
   if (bytes.empty()) throw IoError(path, "empty file (0 bytes), not a scan");
   KittiBinLayout layout = options.layout;
-  if (layout == KittiBinLayout::Auto) layout = detect_layout(path, bytes);
-  const std::size_t stride = layout == KittiBinLayout::XYZI ? 4 : 3;
+  if (layout == KittiBinLayout::kAuto) layout = detect_layout(path, bytes);
+  const std::size_t stride = layout == KittiBinLayout::kXYZI ? 4 : 3;
   const std::size_t record = stride * sizeof(float);
   if (bytes.size() % record != 0) {
     throw IoError(path, "size " + std::to_string(bytes.size()) + " bytes is not a multiple of " +

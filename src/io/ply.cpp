@@ -19,7 +19,7 @@ namespace litamin2::io {
 
 namespace {
 
-enum class Format { Ascii, BinaryLE, BinaryBE };
+enum class Format { kAscii, kBinaryLE, kBinaryBE };
 
 struct Property {
   std::string name;
@@ -150,11 +150,11 @@ PlyVertices read_ply_vertices(const std::string& path) {
     if (key == "format") {
       if (tokens.size() != 3) throw IoError(path, where + "malformed format line");
       if (tokens[1] == "ascii")
-        format = Format::Ascii;
+        format = Format::kAscii;
       else if (tokens[1] == "binary_little_endian")
-        format = Format::BinaryLE;
+        format = Format::kBinaryLE;
       else if (tokens[1] == "binary_big_endian")
-        format = Format::BinaryBE;
+        format = Format::kBinaryBE;
       else
         throw IoError(path, where + "unknown format '" + std::string(tokens[1]) + "'");
     } else if (key == "element") {
@@ -190,10 +190,10 @@ PlyVertices read_ply_vertices(const std::string& path) {
   if (!format) throw IoError(path, "header has no format line");
 
   PlyVertices result;
-  const bool swap = *format == Format::BinaryBE;
+  const bool swap = *format == Format::kBinaryBE;
   std::vector<std::string_view> lines;
   std::size_t line_index = 0;
-  if (*format == Format::Ascii) {
+  if (*format == Format::kAscii) {
     lines = split_lines(std::string_view(bytes.data() + pos, bytes.size() - pos));
   }
   auto next_ascii_tokens = [&]() {
@@ -218,7 +218,7 @@ PlyVertices read_ply_vertices(const std::string& path) {
       result.values.reserve(element.count * n_props);
     }
     for (std::size_t i = 0; i < element.count; ++i) {
-      if (*format == Format::Ascii) {
+      if (*format == Format::kAscii) {
         const auto tokens = next_ascii_tokens();
         std::size_t t = 0;
         for (const Property& p : element.properties) {

@@ -85,7 +85,7 @@ LoopVerification verify_loop(const std::vector<Distribution>& query, const Voxel
     out.reason = "too few distributions";
     return out;
   }
-  const auto search = make_correspondence_search(CorrespondenceMethod::KdTree, submap);
+  const auto search = make_correspondence_search(CorrespondenceMethod::kKdTree, submap);
   const FitnessScorer scorer(query, submap, *search);
   if (scorer.structure.size() < 20) {
     out.reason = "too little structure besides the ground";
@@ -125,7 +125,7 @@ LoopVerification verify_loop(const std::vector<Distribution>& query, const Voxel
   // Fine: LiTAMIN2 ICP-term registration, first with a wide robust scale to pull in from the
   // coarse estimate, then with the odometry's scale for precision.
   RegistrationConfig wide;
-  wide.mode = CostMode::Icp;
+  wide.mode = CostMode::kIcp;
   wide.sigma_icp = config.sigma_icp;
   wide.max_iterations = 50;
   wide.max_isotropy = config.max_isotropy;

@@ -295,7 +295,7 @@ struct Mapper::Impl {
   void set_odometry_uncertainty(PoseGraphEdge& e, const Keyframe& a, const Keyframe& b) const {
     const PoseGraphConfig& g = config.graph;
     e.sigma = odometry_sigma(e.relative.translation().norm());
-    if (g.odometry_covariance != OdometryCovariance::Tracker || b.covariance.isZero(0.0) ||
+    if (g.odometry_covariance != OdometryCovariance::kTracker || b.covariance.isZero(0.0) ||
         b.key.id != a.key.id + 1)
       return;
     Matrix6d c = relative_pose_covariance(a.odom_pose, b.odom_pose, b.covariance) *
@@ -387,7 +387,7 @@ AddStatus Mapper::add_keyframe(Keyframe keyframe, std::vector<LoopEdge>* new_loo
   Impl& m = *impl_;
   if (m.entries.count(keyframe.key)) {
     ++m.stats.duplicates;
-    return AddStatus::Duplicate;
+    return AddStatus::kDuplicate;
   }
   const std::string name = keyframe.key.stream;
   auto [stream_it, new_stream] = m.streams.try_emplace(name);
@@ -413,7 +413,7 @@ AddStatus Mapper::add_keyframe(Keyframe keyframe, std::vector<LoopEdge>* new_loo
   ++m.stats.keyframes;
   m.cpu.chain_s += thread_cpu_seconds() - t1;
   m.detect_loops(stored, new_loops);
-  return AddStatus::Added;
+  return AddStatus::kAdded;
 }
 
 OptimizeSummary Mapper::optimize() {

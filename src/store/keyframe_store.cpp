@@ -85,7 +85,7 @@ KeyframeStore KeyframeStore::open(const std::string& path, OpenMode mode,
   const fs::file_status status = fs::status(path, ec);
   bool create = false;
   if (!fs::exists(status)) {
-    if (mode != OpenMode::CreateIfMissing) throw StoreError(path, "keyframe store does not exist");
+    if (mode != OpenMode::kCreateIfMissing) throw StoreError(path, "keyframe store does not exist");
     create = true;
   } else if (!fs::is_regular_file(status)) {
     throw StoreError(path, "is not a regular file");
@@ -93,7 +93,7 @@ KeyframeStore KeyframeStore::open(const std::string& path, OpenMode mode,
     const std::uintmax_t size = fs::file_size(path, ec);
     if (ec) throw StoreError(path, "cannot read the file size: " + ec.message());
     if (size == 0) {
-      if (mode != OpenMode::CreateIfMissing) {
+      if (mode != OpenMode::kCreateIfMissing) {
         throw StoreError(path, "file is empty, not a keyframe store");
       }
       create = true;
@@ -104,7 +104,7 @@ KeyframeStore KeyframeStore::open(const std::string& path, OpenMode mode,
 
   auto impl = std::make_unique<Impl>();
   impl->path = path;
-  impl->read_only = mode == OpenMode::ReadOnly;
+  impl->read_only = mode == OpenMode::kReadOnly;
   const int flags = impl->read_only ? SQLITE_OPEN_READONLY
                                     : SQLITE_OPEN_READWRITE | (create ? SQLITE_OPEN_CREATE : 0);
   impl->db = open_connection(path, flags);

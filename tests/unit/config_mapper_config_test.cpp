@@ -21,7 +21,7 @@ TEST(MappingConfig, EmittedYamlReadsBack) {
   config.verification.min_fitness = 0.7;
   config.verification.max_isotropy = 0.05;
   config.graph.threads = 2;
-  config.graph.odometry_covariance = OdometryCovariance::Distance;
+  config.graph.odometry_covariance = OdometryCovariance::kDistance;
   config.graph.tracker_covariance_scale = 4.0;
   const std::string yaml = mapper_config_to_yaml(config);
   EXPECT_EQ(mapper_config_to_yaml(mapper_config_from_yaml(YAML::Load(yaml))), yaml);
@@ -53,9 +53,9 @@ TEST(MappingConfig, BadKeysAndValuesAreNamed) {
 }
 
 TEST(MappingConfig, OdometryCovarianceSource) {
-  EXPECT_EQ(MapperConfig{}.graph.odometry_covariance, OdometryCovariance::Tracker);
+  EXPECT_EQ(MapperConfig{}.graph.odometry_covariance, OdometryCovariance::kTracker);
   const MapperConfig c = mapper_config_from_yaml(
       YAML::Load("pose_graph: {odometry_covariance: distance, tracker_covariance_scale: 3}"));
-  EXPECT_EQ(c.graph.odometry_covariance, OdometryCovariance::Distance);
+  EXPECT_EQ(c.graph.odometry_covariance, OdometryCovariance::kDistance);
   EXPECT_DOUBLE_EQ(c.graph.tracker_covariance_scale, 3.0);
 }

@@ -21,7 +21,7 @@ std::string error_of(const std::string& yaml) {
 TEST(TrackerConfigYaml, EmptyDocumentGivesDefaults) {
   const TrackerConfig config = tracker_config_from_yaml(YAML::Load("{}"));
   EXPECT_EQ(config.voxelizer.voxel_size, TrackerConfig{}.voxelizer.voxel_size);
-  EXPECT_EQ(config.registration.mode, CostMode::IcpCov);
+  EXPECT_EQ(config.registration.mode, CostMode::kIcpCov);
   EXPECT_EQ(config.registration.sigma_icp, 0.1);
   EXPECT_EQ(config.registration.sigma_cov, 3.0);
   EXPECT_EQ(config.registration.lambda, 1e-6);
@@ -35,17 +35,17 @@ TEST(TrackerConfigYaml, ShippedFileIsTheDefaults) {
 TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   TrackerConfig config;
   config.voxelizer.voxel_size = 2.5;
-  config.voxelizer.regularizer.method = RegularizationMethod::Plane;
-  config.registration.mode = CostMode::Icp;
-  config.registration.cov_energy = CovEnergy::Squared;
-  config.registration.correspondence = CorrespondenceMethod::Voxel27;
+  config.voxelizer.regularizer.method = RegularizationMethod::kPlane;
+  config.registration.mode = CostMode::kIcp;
+  config.registration.cov_energy = CovEnergy::kSquared;
+  config.registration.correspondence = CorrespondenceMethod::kVoxel27;
   config.keyframe.angle_deg = 7.25;
   config.map.radius = 80.0;
   config.registration.max_isotropy = 0.125;
   const TrackerConfig back = tracker_config_from_yaml(YAML::Load(tracker_config_to_yaml(config)));
   EXPECT_EQ(tracker_config_to_yaml(back), tracker_config_to_yaml(config));
   EXPECT_EQ(back.voxelizer.voxel_size, 2.5);
-  EXPECT_EQ(back.registration.correspondence, CorrespondenceMethod::Voxel27);
+  EXPECT_EQ(back.registration.correspondence, CorrespondenceMethod::kVoxel27);
 }
 
 TEST(TrackerConfigYaml, ErrorsNameKeyAndValue) {

@@ -164,7 +164,7 @@ TEST(Regularizer, FlatCovarianceGetsBoundedInverse) {
   regularize_covariance(config, cov, inv);
   EXPECT_TRUE((cov * inv).isApprox(Eigen::Matrix3d::Identity(), 1e-9));
   EXPECT_NEAR(cov(2, 2), config.min_eigen_ratio, 1e-12);
-  config.method = RegularizationMethod::Plane;
+  config.method = RegularizationMethod::kPlane;
   cov = Eigen::Vector3d(4.0, 2.0, 1e-9).asDiagonal();
   regularize_covariance(config, cov, inv);
   EXPECT_NEAR(cov(0, 0), 4.0, 1e-12);

@@ -44,7 +44,7 @@ Eigen::Isometry3d kiss_icp_consensus() {
 
 /// Pose of `source` scan in the frame of `target` scan.
 Eigen::Isometry3d register_pair(const PointCloud& target, const PointCloud& source, CostMode mode,
-                                CorrespondenceMethod method = CorrespondenceMethod::Voxel27,
+                                CorrespondenceMethod method = CorrespondenceMethod::kVoxel27,
                                 const Eigen::Isometry3d& initial = Eigen::Isometry3d::Identity()) {
   RegistrationConfig config;
   config.mode = mode;
@@ -97,22 +97,22 @@ TEST_P(KittiPairTest, ForwardAndBackwardAreInverse) {
 
 TEST_P(KittiPairTest, StartedAtGroundTruthReturnsToConsensus) {
   const Eigen::Isometry3d estimate =
-      register_pair(scan0_, scan1_, GetParam(), CorrespondenceMethod::Voxel27, ground_truth_);
+      register_pair(scan0_, scan1_, GetParam(), CorrespondenceMethod::kVoxel27, ground_truth_);
   EXPECT_LT(difference(estimate, kiss_icp_consensus()).translation_m, 0.05);
 }
 
 TEST_P(KittiPairTest, KdTreeAndVoxelLookupGiveTheSamePose) {
   const Eigen::Isometry3d voxel = register_pair(scan0_, scan1_, GetParam());
   const Eigen::Isometry3d kdtree =
-      register_pair(scan0_, scan1_, GetParam(), CorrespondenceMethod::KdTree);
+      register_pair(scan0_, scan1_, GetParam(), CorrespondenceMethod::kKdTree);
   const PoseError d = difference(voxel, kdtree);
   EXPECT_LT(d.translation_m, 1e-6);
   EXPECT_LT(d.rotation_deg, 1e-5);
 }
 
-INSTANTIATE_TEST_SUITE_P(Modes, KittiPairTest, ::testing::Values(CostMode::Icp, CostMode::IcpCov),
+INSTANTIATE_TEST_SUITE_P(Modes, KittiPairTest, ::testing::Values(CostMode::kIcp, CostMode::kIcpCov),
                          [](const auto& info) {
-                           return info.param == CostMode::Icp ? "Icp" : "IcpCov";
+                           return info.param == CostMode::kIcp ? "Icp" : "IcpCov";
                          });
 
 }  // namespace

@@ -29,7 +29,7 @@ class NearestCacheTest : public ::testing::Test {
  protected:
   void SetUp() override {
     map_.insert(testing::synthetic_scene(1), Eigen::Isometry3d::Identity());
-    search_ = make_correspondence_search(CorrespondenceMethod::KdTree, map_);
+    search_ = make_correspondence_search(CorrespondenceMethod::kKdTree, map_);
     Voxelizer voxelizer(voxels_);
     source_ = voxelizer.voxelize(testing::synthetic_scene(2));
   }
@@ -70,7 +70,7 @@ TEST_F(NearestCacheTest, AnswersAsTheSearchDoesForMovingQueries) {
 
 TEST_F(NearestCacheTest, CostAlongNewtonLikeStepsIsBitIdentical) {
   std::mt19937 rng(9);
-  for (const CostMode mode : {CostMode::Icp, CostMode::IcpCov}) {
+  for (const CostMode mode : {CostMode::kIcp, CostMode::kIcpCov}) {
     RegistrationConfig config;
     config.mode = mode;
     NearestCache cache(*search_, map_.distributions(), source_.size());

@@ -34,7 +34,7 @@ Eigen::Isometry3d make_pose(const Eigen::Vector3d& rotation_deg, const Eigen::Ve
 }
 
 RegistrationResult register_known(const Eigen::Isometry3d& truth, CostMode mode,
-                                  CorrespondenceMethod method = CorrespondenceMethod::Voxel27,
+                                  CorrespondenceMethod method = CorrespondenceMethod::kVoxel27,
                                   double max_correspondence_distance = 0.0,
                                   double sigma_icp = RegistrationConfig{}.sigma_icp) {
   const PointCloud target = testing::synthetic_scene(1);
@@ -57,7 +57,7 @@ TEST_P(KnownTransformTest, RecoversTransform) {
   const Eigen::Isometry3d truth = make_pose(c.rotation_deg, c.translation);
   // From identity, a 10 deg error moves points at 45 m by 8 m: beyond one voxel, so the search
   // must reach farther than the default (which suits tracking, where the prediction is close).
-  const RegistrationResult result = register_known(truth, c.mode, CorrespondenceMethod::KdTree,
+  const RegistrationResult result = register_known(truth, c.mode, CorrespondenceMethod::kKdTree,
                                                    2.0 * VoxelizerConfig{}.voxel_size);
   ASSERT_TRUE(result.valid);
   const Eigen::Isometry3d error = truth.inverse() * result.pose;
@@ -67,7 +67,7 @@ TEST_P(KnownTransformTest, RecoversTransform) {
 
 std::vector<Case> cases() {
   std::vector<Case> out;
-  for (CostMode mode : {CostMode::Icp, CostMode::IcpCov}) {
+  for (CostMode mode : {CostMode::kIcp, CostMode::kIcpCov}) {
     out.push_back({mode, Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.5, 0, 0)});
     out.push_back({mode, Eigen::Vector3d(0, 0, 10), Eigen::Vector3d(0.7, 0.5, 0.3)});
     out.push_back({mode, Eigen::Vector3d(2, -3, -8), Eigen::Vector3d(-0.6, 0.6, 0.5)});
@@ -80,7 +80,7 @@ INSTANTIATE_TEST_SUITE_P(UpTo1mAnd10deg, KnownTransformTest, ::testing::ValuesIn
 
 TEST(Registration, PredictionSizedErrorsWithDefaults) {
   // Errors of a constant-velocity prediction at 10 Hz are centimetres to a few decimetres.
-  for (CostMode mode : {CostMode::Icp, CostMode::IcpCov}) {
+  for (CostMode mode : {CostMode::kIcp, CostMode::kIcpCov}) {
     for (const auto& [rotation, translation] :
          {std::pair{Eigen::Vector3d(0, 0, 2), Eigen::Vector3d(0.4, 0.1, 0.0)},
           std::pair{Eigen::Vector3d(0.5, -0.5, -3), Eigen::Vector3d(-0.3, 0.3, 0.1)}}) {
@@ -97,9 +97,9 @@ TEST(Registration, PredictionSizedErrorsWithDefaults) {
 TEST(Registration, KdTreeAndVoxelLookupAgree) {
   const Eigen::Isometry3d truth = make_pose(Eigen::Vector3d(0, 0, 5), Eigen::Vector3d(0.8, 0.2, 0));
   const RegistrationResult a =
-      register_known(truth, CostMode::IcpCov, CorrespondenceMethod::Voxel27);
+      register_known(truth, CostMode::kIcpCov, CorrespondenceMethod::kVoxel27);
   const RegistrationResult b =
-      register_known(truth, CostMode::IcpCov, CorrespondenceMethod::KdTree);
+      register_known(truth, CostMode::kIcpCov, CorrespondenceMethod::kKdTree);
   EXPECT_LT((a.pose.inverse() * b.pose).translation().norm(), 1e-6);
 }
 
@@ -108,12 +108,12 @@ TEST(Registration, BitIdenticalForAnyThreadCount) {
   RegistrationResult reference;
   {
     tbb::task_arena one(1);
-    one.execute([&] { reference = register_known(truth, CostMode::IcpCov); });
+    one.execute([&] { reference = register_known(truth, CostMode::kIcpCov); });
   }
   for (int threads : {2, 4, 8}) {
     tbb::task_arena arena(threads);
     RegistrationResult result;
-    arena.execute([&] { result = register_known(truth, CostMode::IcpCov); });
+    arena.execute([&] { result = register_known(truth, CostMode::kIcpCov); });
     EXPECT_EQ(0, std::memcmp(reference.pose.matrix().data(), result.pose.matrix().data(),
                              sizeof(double) * 16))
         << threads << " threads";
@@ -127,7 +127,7 @@ class GateTest : public ::testing::Test {
  protected:
   void SetUp() override {
     map.insert(testing::synthetic_scene(1), Eigen::Isometry3d::Identity());
-    search = make_correspondence_search(CorrespondenceMethod::Voxel27, map);
+    search = make_correspondence_search(CorrespondenceMethod::kVoxel27, map);
     Voxelizer voxelizer(voxels);
     source = voxelizer.voxelize(testing::synthetic_scene(2), pose);
   }
@@ -141,9 +141,9 @@ class GateTest : public ::testing::Test {
 
 TEST_F(GateTest, CovMinPointsGatesOnlyTheCovTerm) {
   RegistrationConfig config;
-  config.mode = CostMode::Icp;
+  config.mode = CostMode::kIcp;
   const CostEvaluation icp = evaluate_cost(source, map, *search, pose, config);
-  config.mode = CostMode::IcpCov;
+  config.mode = CostMode::kIcpCov;
   config.cov_min_points = 0;  // every correspondence (the paper)
   const CostEvaluation all = evaluate_cost(source, map, *search, pose, config);
   config.cov_min_points = 1 << 30;  // no distribution has that many points: ICP term only
@@ -173,7 +173,7 @@ TEST_F(GateTest, MaxIsotropyDropsOnlyRoundCorrespondences) {
   }
   ASSERT_GT(flat, 0);
   ASSERT_GT(round, 0);
-  for (CostMode mode : {CostMode::Icp, CostMode::IcpCov}) {
+  for (CostMode mode : {CostMode::kIcp, CostMode::kIcpCov}) {
     config.mode = mode;
     config.max_isotropy = 1.0;  // every correspondence (the paper)
     const CostEvaluation all = evaluate_cost(source, map, *search, pose, config);
@@ -210,7 +210,7 @@ TEST(Registration, FailsCleanlyWithoutOverlap) {
   VoxelMap map(voxels, VoxelMapConfig{});
   map.insert(testing::synthetic_scene(1), Eigen::Isometry3d::Identity());
   Voxelizer voxelizer(voxels);
-  const auto search = make_correspondence_search(CorrespondenceMethod::Voxel27, map);
+  const auto search = make_correspondence_search(CorrespondenceMethod::kVoxel27, map);
   const PointCloud far_away = testing::transformed(
       testing::synthetic_scene(2), make_pose(Eigen::Vector3d::Zero(), Eigen::Vector3d(500, 0, 0)));
   const ScanRegistration out = register_scan(far_away, voxelizer, map, *search,

@@ -58,15 +58,15 @@ TEST_P(TrackerTest, FollowsKnownPath) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Modes, TrackerTest, ::testing::Values(CostMode::Icp, CostMode::IcpCov));
+INSTANTIATE_TEST_SUITE_P(Modes, TrackerTest, ::testing::Values(CostMode::kIcp, CostMode::kIcpCov));
 
 TEST(Tracker, BitIdenticalPosesForAnyThreadCount) {
   const auto truth = path(12);
   std::vector<Eigen::Isometry3d> reference;
-  tbb::task_arena(1).execute([&] { reference = run(truth, CostMode::IcpCov); });
+  tbb::task_arena(1).execute([&] { reference = run(truth, CostMode::kIcpCov); });
   for (int threads : {2, 4}) {
     std::vector<Eigen::Isometry3d> poses;
-    tbb::task_arena(threads).execute([&] { poses = run(truth, CostMode::IcpCov); });
+    tbb::task_arena(threads).execute([&] { poses = run(truth, CostMode::kIcpCov); });
     ASSERT_EQ(poses.size(), reference.size());
     for (std::size_t i = 0; i < poses.size(); ++i) {
       EXPECT_EQ(0, std::memcmp(poses[i].matrix().data(), reference[i].matrix().data(),

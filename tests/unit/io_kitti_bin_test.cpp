@@ -68,7 +68,7 @@ TEST(IoKittiBin, WriteWithoutIntensityWritesZeros) {
   const PointCloud cloud = scan_line(5, false);
   write_kitti_bin(file.string(), cloud);
   KittiBinOptions opt;
-  opt.layout = KittiBinLayout::XYZI;
+  opt.layout = KittiBinLayout::kXYZI;
   const PointCloud back = read_kitti_bin(file.string(), opt);
   ASSERT_EQ(back.size(), 5u);
   for (std::size_t i = 0; i < 5; ++i) {
@@ -145,7 +145,7 @@ TEST(IoKittiBin, RealSharedScansAreDetectedAsXyz) {
   EXPECT_EQ(scan1.size(), 124605u);
   EXPECT_FALSE(scan1.has_intensities());
   KittiBinOptions xyzi;
-  xyzi.layout = KittiBinLayout::XYZI;
+  xyzi.layout = KittiBinLayout::kXYZI;
   expect_io_error([&] { read_kitti_bin(dir + "/000001.bin", xyzi); }, "000001.bin",
                   "not a multiple of 16");
 }
@@ -199,7 +199,7 @@ TEST(IoKittiBin, ErrorsNameTheFile) {
   // 60 bytes forced as XYZI: truncated.
   write_bytes(dir / "short.bin", 60);
   KittiBinOptions xyzi;
-  xyzi.layout = KittiBinLayout::XYZI;
+  xyzi.layout = KittiBinLayout::kXYZI;
   expect_io_error([&] { read_kitti_bin((dir / "short.bin").string(), xyzi); }, "short.bin");
   // Unwritable destination.
   expect_io_error([&] { write_kitti_bin((dir / "no_dir" / "x.bin").string(), scan_line(2, true)); },

@@ -78,9 +78,9 @@ TEST(MappingMapper, DuplicatesAreIgnoredAndLateKeyframesChainByOdometry) {
   config.place.max_descriptor_distance = 0.0;
   Mapper mapper(config);
   for (std::size_t i : {3u, 0u, 5u, 1u, 4u, 2u}) {
-    EXPECT_EQ(mapper.add_keyframe(keyframes[i]), AddStatus::Added);
+    EXPECT_EQ(mapper.add_keyframe(keyframes[i]), AddStatus::kAdded);
   }
-  EXPECT_EQ(mapper.add_keyframe(keyframes[4]), AddStatus::Duplicate);
+  EXPECT_EQ(mapper.add_keyframe(keyframes[4]), AddStatus::kDuplicate);
   EXPECT_EQ(mapper.stats().keyframes, 6u);
   EXPECT_EQ(mapper.stats().duplicates, 1u);
   // The first keyframe to arrive (id 3) took its odometry pose and the others were chained to

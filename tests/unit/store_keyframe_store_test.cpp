@@ -95,7 +95,7 @@ void expect_store_error(F&& f, const fs::path& path, const std::string& reason) 
 void expect_refused_unchanged(const fs::path& path, const std::string& reason,
                               bool side_files_allowed = false) {
   const std::string before = read_bytes(path);
-  for (OpenMode mode : {OpenMode::CreateIfMissing, OpenMode::MustExist, OpenMode::ReadOnly}) {
+  for (OpenMode mode : {OpenMode::kCreateIfMissing, OpenMode::kMustExist, OpenMode::kReadOnly}) {
     expect_store_error([&] { KeyframeStore::open(path.string(), mode); }, path, reason);
   }
   EXPECT_EQ(read_bytes(path), before) << path << " was modified";
@@ -129,7 +129,7 @@ TEST(KeyframeStore, RoundTripKeepsPosesCovarianceAndDistributionsToFloatPrecisio
   const fs::path path = temp_dir() / "store.db";
   const Keyframe kf = make_keyframe("lidar_front", 3, 1'700'000'000'123'456'789, 200);
   {
-    KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::CreateIfMissing);
+    KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing);
     EXPECT_TRUE(store.insert_keyframe(kf));
     EXPECT_EQ(store.keyframe_count(), 1u);
     EXPECT_TRUE(store.contains(kf.key));
@@ -138,8 +138,8 @@ TEST(KeyframeStore, RoundTripKeepsPosesCovarianceAndDistributionsToFloatPrecisio
   }
   for (const RegularizerConfig& config :
        {RegularizerConfig{},
-        RegularizerConfig{RegularizationMethod::Plane, 1e-4, 0.3, 1e-3, 1e-6}}) {
-    KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::ReadOnly);
+        RegularizerConfig{RegularizationMethod::kPlane, 1e-4, 0.3, 1e-3, 1e-6}}) {
+    KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::kReadOnly);
     const std::vector<Keyframe> loaded = store.load_keyframes(config);
     ASSERT_EQ(loaded.size(), 1u);
     expect_same_keyframe_header(loaded[0], kf);
@@ -154,7 +154,7 @@ TEST(KeyframeStore, RoundTripKeepsPosesCovarianceAndDistributionsToFloatPrecisio
       EXPECT_TRUE(out.cov.isApprox(cov, 1e-12));
       EXPECT_TRUE(out.shape_cov.isApprox(shape, 1e-12));
       EXPECT_TRUE(out.shape_cov_inv.isApprox(shape_inv, 1e-12));
-      if (config.method == RegularizationMethod::EigenClamp) {
+      if (config.method == RegularizationMethod::kEigenClamp) {
         EXPECT_TRUE(out.cov.isApprox(in.cov, 1e-6)) << "float precision of the stored triangle";
       }
     }
@@ -163,7 +163,7 @@ TEST(KeyframeStore, RoundTripKeepsPosesCovarianceAndDistributionsToFloatPrecisio
 
 TEST(KeyframeStore, DuplicateInsertsAreIgnoredAndKeepTheFirstKeyframe) {
   const fs::path path = temp_dir() / "store.db";
-  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::CreateIfMissing);
+  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing);
   const Keyframe a = make_keyframe("s", 0, 100, 10);
   Keyframe a_again = a;
   a_again.stamp.nanoseconds = 999;
@@ -193,7 +193,7 @@ TEST(KeyframeStore, OutOfOrderInsertsLoadInCanonicalOrder) {
   }
   std::vector<Keyframe> shuffled = keyframes;
   std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(42));
-  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::CreateIfMissing);
+  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing);
   for (std::size_t i = 0; i < shuffled.size(); ++i) {
     if (i % 2 == 0) {
       EXPECT_TRUE(store.insert_keyframe(shuffled[i]));
@@ -246,7 +246,7 @@ void expect_same_edges(const std::vector<LoopEdge>& a, const std::vector<LoopEdg
 
 TEST(KeyframeStore, LoopEdgesRoundTripAndAreReplacedAsAWhole) {
   const fs::path path = temp_dir() / "store.db";
-  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::CreateIfMissing);
+  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing);
   EXPECT_TRUE(store.load_loop_edges().empty());
   // Not sorted by key: the order given is the order loaded.
   const std::vector<LoopEdge> first = {make_edge({"b", 2}, {"b", 40}, 1),
@@ -267,13 +267,13 @@ TEST(KeyframeStore, LoopEdgesRoundTripAndAreReplacedAsAWhole) {
   store.replace_loop_edges({});
   EXPECT_TRUE(store.load_loop_edges().empty());
   store.replace_loop_edges(first);
-  store = KeyframeStore::open(path.string(), OpenMode::MustExist);
+  store = KeyframeStore::open(path.string(), OpenMode::kMustExist);
   expect_same_edges(store.load_loop_edges(), first);
 }
 
 TEST(KeyframeStore, CorrectedPosesRoundTripOrderedByKeyAndAreReplacedAsAWhole) {
   const fs::path path = temp_dir() / "store.db";
-  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::CreateIfMissing);
+  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing);
   std::mt19937 rng(5);
   const std::vector<CorrectedPose> poses = {
       corrected({"b", 1}, random_pose(rng), "a"), corrected({"a", 10}, random_pose(rng), "a"),
@@ -306,7 +306,7 @@ TEST(KeyframeStore, ReopeningKeepsEverythingAndReadOnlyRefusesWrites) {
   const std::vector<CorrectedPose> poses = {corrected({"s", 0}, random_pose(rng), "s")};
   {
     KeyframeStore store =
-        KeyframeStore::open(path.string(), OpenMode::CreateIfMissing, StoreOptions{true, 1000});
+        KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing, StoreOptions{true, 1000});
     for (const Keyframe& kf : keyframes) store.insert_keyframe(kf);
     store.replace_loop_edges(edges);
     store.replace_corrected_poses(poses);
@@ -315,7 +315,7 @@ TEST(KeyframeStore, ReopeningKeepsEverythingAndReadOnlyRefusesWrites) {
   EXPECT_FALSE(fs::exists(path.string() + "-wal"));
   const std::string closed_bytes = read_bytes(path);
   {
-    KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::ReadOnly);
+    KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::kReadOnly);
     const std::vector<Keyframe> loaded = store.load_keyframes();
     ASSERT_EQ(loaded.size(), keyframes.size());
     for (std::size_t i = 0; i < loaded.size(); ++i) {
@@ -329,7 +329,7 @@ TEST(KeyframeStore, ReopeningKeepsEverythingAndReadOnlyRefusesWrites) {
     expect_store_error([&] { store.replace_corrected_poses({}); }, path, "read-only");
   }
   EXPECT_EQ(read_bytes(path), closed_bytes);
-  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::MustExist);
+  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::kMustExist);
   EXPECT_EQ(store.keyframe_count(), keyframes.size());
   EXPECT_TRUE(store.insert_keyframe(make_keyframe("s", 9, 9, 1)));
 }
@@ -338,7 +338,7 @@ TEST(KeyframeStore, IsMoveOnlyAndAMovedFromStoreSaysSo) {
   static_assert(!std::is_copy_constructible_v<KeyframeStore>);
   static_assert(std::is_nothrow_move_constructible_v<KeyframeStore>);
   const fs::path path = temp_dir() / "store.db";
-  KeyframeStore a = KeyframeStore::open(path.string(), OpenMode::CreateIfMissing);
+  KeyframeStore a = KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing);
   KeyframeStore b = std::move(a);
   EXPECT_TRUE(b.insert_keyframe(make_keyframe("s", 0, 0, 1)));
   EXPECT_EQ(b.path(), path.string());
@@ -349,7 +349,7 @@ TEST(KeyframeStore, IsMoveOnlyAndAMovedFromStoreSaysSo) {
 /// `fd`, forever (the parent kills it). Never returns.
 [[noreturn]] void insert_until_killed(const std::string& path, int fd) {
   try {
-    KeyframeStore store = KeyframeStore::open(path, OpenMode::CreateIfMissing);
+    KeyframeStore store = KeyframeStore::open(path, OpenMode::kCreateIfMissing);
     for (std::uint64_t id = 0;; ++id) {
       store.insert_keyframe(make_keyframe("s", id, static_cast<std::int64_t>(id), 300));
       if (write(fd, &id, sizeof(id)) != static_cast<ssize_t>(sizeof(id))) _exit(3);
@@ -385,7 +385,7 @@ TEST(KeyframeStore, KeepsEveryCommittedKeyframeWhenTheWriterIsKilledMidLoop) {
   EXPECT_EQ(WTERMSIG(status), SIGKILL);
   ASSERT_GE(reported, 40u);
 
-  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::MustExist);
+  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::kMustExist);
   // Every reported keyframe was committed; at most one more may have committed unreported.
   const std::size_t count = store.keyframe_count();
   EXPECT_GE(count, reported);
@@ -406,7 +406,7 @@ TEST(KeyframeStore, KeepsSingleAndBatchedCommitsWhenTheWriterKillsItself) {
   ASSERT_GE(child, 0);
   if (child == 0) {
     try {
-      KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::CreateIfMissing);
+      KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing);
       std::vector<Keyframe> batch;
       for (std::uint64_t id = 0; id < 20; ++id) {
         store.insert_keyframe(make_keyframe("single", id, static_cast<std::int64_t>(id), 100));
@@ -426,7 +426,7 @@ TEST(KeyframeStore, KeepsSingleAndBatchedCommitsWhenTheWriterKillsItself) {
   // The log was not checkpointed: the keyframes are only in it.
   EXPECT_TRUE(fs::exists(path.string() + "-wal"));
   // A read-only open recovers from the log too.
-  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::ReadOnly);
+  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::kReadOnly);
   EXPECT_EQ(store.keyframe_count(), 40u);
   EXPECT_EQ(store.load_keyframes().size(), 40u);
 }
@@ -434,26 +434,26 @@ TEST(KeyframeStore, KeepsSingleAndBatchedCommitsWhenTheWriterKillsItself) {
 TEST(KeyframeStore, MissingOrEmptyFilesAreCreatedOnlyWhenAsked) {
   const fs::path dir = temp_dir();
   const fs::path missing = dir / "missing.db";
-  expect_store_error([&] { KeyframeStore::open(missing.string(), OpenMode::MustExist); }, missing,
+  expect_store_error([&] { KeyframeStore::open(missing.string(), OpenMode::kMustExist); }, missing,
                      "does not exist");
-  expect_store_error([&] { KeyframeStore::open(missing.string(), OpenMode::ReadOnly); }, missing,
+  expect_store_error([&] { KeyframeStore::open(missing.string(), OpenMode::kReadOnly); }, missing,
                      "does not exist");
   EXPECT_FALSE(fs::exists(missing));
 
   const fs::path empty = dir / "empty.db";
   write_bytes(empty, "");
-  expect_store_error([&] { KeyframeStore::open(empty.string(), OpenMode::MustExist); }, empty,
+  expect_store_error([&] { KeyframeStore::open(empty.string(), OpenMode::kMustExist); }, empty,
                      "empty");
-  expect_store_error([&] { KeyframeStore::open(empty.string(), OpenMode::ReadOnly); }, empty,
+  expect_store_error([&] { KeyframeStore::open(empty.string(), OpenMode::kReadOnly); }, empty,
                      "empty");
   EXPECT_EQ(fs::file_size(empty), 0u);
-  KeyframeStore::open(empty.string(), OpenMode::CreateIfMissing)
+  KeyframeStore::open(empty.string(), OpenMode::kCreateIfMissing)
       .insert_keyframe(make_keyframe("s", 0, 0, 1));
-  EXPECT_EQ(KeyframeStore::open(empty.string(), OpenMode::MustExist).keyframe_count(), 1u);
+  EXPECT_EQ(KeyframeStore::open(empty.string(), OpenMode::kMustExist).keyframe_count(), 1u);
 
-  expect_store_error([&] { KeyframeStore::open(dir.string(), OpenMode::CreateIfMissing); }, dir,
+  expect_store_error([&] { KeyframeStore::open(dir.string(), OpenMode::kCreateIfMissing); }, dir,
                      "not a regular file");
-  expect_store_error([&] { KeyframeStore::open("", OpenMode::CreateIfMissing); }, "", "empty");
+  expect_store_error([&] { KeyframeStore::open("", OpenMode::kCreateIfMissing); }, "", "empty");
 }
 
 TEST(KeyframeStore, FilesThatAreNotSqliteAreRefusedAndLeftUnchanged) {
@@ -474,7 +474,7 @@ TEST(KeyframeStore, FilesThatAreNotSqliteAreRefusedAndLeftUnchanged) {
 /// A closed store of a few keyframes (big enough for many pages), its bytes.
 std::string valid_store_bytes(const fs::path& path) {
   {
-    KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::CreateIfMissing);
+    KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing);
     for (std::uint64_t id = 0; id < 10; ++id)
       store.insert_keyframe(make_keyframe("s", id, id, 300));
   }
@@ -523,7 +523,7 @@ TEST(KeyframeStore, OtherApplicationsAndSchemasAreRefusedAndLeftUnchanged) {
   expect_refused_unchanged(dir / "no_table.db", "table corrected_poses is missing", true);
 
   // The valid store itself opens.
-  EXPECT_EQ(KeyframeStore::open((dir / "valid.db").string(), OpenMode::ReadOnly).keyframe_count(),
+  EXPECT_EQ(KeyframeStore::open((dir / "valid.db").string(), OpenMode::kReadOnly).keyframe_count(),
             10u);
 }
 
@@ -532,22 +532,22 @@ TEST(KeyframeStore, CorruptRowsAreReportedWithTheirKey) {
   valid_store_bytes(path);
   raw_sql(path, "UPDATE keyframes SET pose = x'0011' WHERE id = 3");
   expect_store_error(
-      [&] { KeyframeStore::open(path.string(), OpenMode::ReadOnly).load_keyframes(); }, path,
+      [&] { KeyframeStore::open(path.string(), OpenMode::kReadOnly).load_keyframes(); }, path,
       "corrupt keyframe row 's'/3: pose blob has 2 bytes, expected 96");
   raw_sql(path,
           "UPDATE keyframes SET pose = (SELECT pose FROM keyframes WHERE id = 4) WHERE id = 3;"
           "UPDATE keyframes SET distributions = substr(distributions, 1, 41) WHERE id = 7");
   expect_store_error(
-      [&] { KeyframeStore::open(path.string(), OpenMode::ReadOnly).load_keyframes(); }, path,
+      [&] { KeyframeStore::open(path.string(), OpenMode::kReadOnly).load_keyframes(); }, path,
       "'s'/7: distributions blob has 41 bytes, not a multiple of 40");
   raw_sql(path,
           "UPDATE keyframes SET distributions = x'' WHERE id = 7;"
           "UPDATE keyframes SET covariance = 'text' WHERE id = 8");
   expect_store_error(
-      [&] { KeyframeStore::open(path.string(), OpenMode::ReadOnly).load_keyframes(); }, path,
+      [&] { KeyframeStore::open(path.string(), OpenMode::kReadOnly).load_keyframes(); }, path,
       "'s'/8: covariance is not a blob");
 
-  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::MustExist);
+  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::kMustExist);
   store.replace_loop_edges({make_edge({"s", 0}, {"s", 9}, 1)});
   store.replace_corrected_poses({corrected({"s", 2}, Eigen::Isometry3d::Identity(), "s")});
   raw_sql(path,
@@ -561,7 +561,7 @@ TEST(KeyframeStore, CorruptRowsAreReportedWithTheirKey) {
 
 TEST(KeyframeStore, InvalidKeyframesAreRefusedAndABatchIsAllOrNothing) {
   const fs::path path = temp_dir() / "store.db";
-  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::CreateIfMissing);
+  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing);
   Keyframe no_stream = make_keyframe("", 0, 0, 1);
   expect_store_error([&] { store.insert_keyframe(no_stream); }, path, "empty stream name");
   Keyframe huge_id = make_keyframe("s", std::uint64_t{1} << 63, 0, 1);

@@ -86,9 +86,9 @@ void BM_CostEvaluation(benchmark::State& state) {
   VoxelMap map(VoxelizerConfig{}, VoxelMapConfig{});
   map.insert(real_pair().target, Eigen::Isometry3d::Identity());
   const auto source = Voxelizer(VoxelizerConfig{}).voxelize(real_pair().source);
-  const auto search = make_correspondence_search(CorrespondenceMethod::Voxel27, map);
+  const auto search = make_correspondence_search(CorrespondenceMethod::kVoxel27, map);
   RegistrationConfig config;
-  config.mode = state.range(1) ? CostMode::IcpCov : CostMode::Icp;
+  config.mode = state.range(1) ? CostMode::kIcpCov : CostMode::kIcp;
   in_arena(state, [&] {
     for (auto _ : state) {
       benchmark::DoNotOptimize(
@@ -155,7 +155,7 @@ void BM_TrackerFrames(benchmark::State& state) {
   if (!sequence) return;
   const std::vector<PointCloud>& scans = *sequence;
   TrackerConfig config;
-  config.registration.mode = state.range(1) ? CostMode::IcpCov : CostMode::Icp;
+  config.registration.mode = state.range(1) ? CostMode::kIcpCov : CostMode::kIcp;
   in_arena(state, [&] {
     for (auto _ : state) {
       Tracker tracker(config);

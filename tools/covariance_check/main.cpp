@@ -59,8 +59,8 @@ int main(int argc, char** argv) {
 
   try {
     TrackerConfig config = config_file.empty() ? TrackerConfig{} : load_tracker_config(config_file);
-    if (mode == "icp") config.registration.mode = CostMode::Icp;
-    if (mode == "icp+cov") config.registration.mode = CostMode::IcpCov;
+    if (mode == "icp") config.registration.mode = CostMode::kIcp;
+    if (mode == "icp+cov") config.registration.mode = CostMode::kIcpCov;
     const io::ScanSequence sequence(input);
     if (!sequence.ground_truth_cam() || !sequence.velo_to_cam())
       throw std::runtime_error(input + ": needs poses.txt and calib.txt");

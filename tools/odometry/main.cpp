@@ -116,8 +116,8 @@ std::optional<tools::Accuracy> accuracy(const io::ScanSequence& seq,
 int run(const Options& options) {
   TrackerConfig config =
       options.config_file.empty() ? TrackerConfig{} : load_tracker_config(options.config_file);
-  if (options.mode == "icp") config.registration.mode = CostMode::Icp;
-  if (options.mode == "icp+cov") config.registration.mode = CostMode::IcpCov;
+  if (options.mode == "icp") config.registration.mode = CostMode::kIcp;
+  if (options.mode == "icp+cov") config.registration.mode = CostMode::kIcpCov;
   if (options.voxel_size > 0.0) config.voxelizer.voxel_size = options.voxel_size;
   validate(config);
 
@@ -185,7 +185,7 @@ int run(const Options& options) {
     io::write_kitti_poses((out / "poses_kitti_cam.txt").string(), poses_cam);
     acc = accuracy(sequence, tr, poses_cam, first);
   }
-  const std::string mode = config.registration.mode == CostMode::Icp ? "icp" : "icp+cov";
+  const std::string mode = config.registration.mode == CostMode::kIcp ? "icp" : "icp+cov";
   std::ofstream((fs::path(options.output) / "stats.json").string())
       << stats.to_json(mode, config.voxelizer.voxel_size, threads, wall, acc);
 

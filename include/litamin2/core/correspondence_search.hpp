@@ -11,7 +11,7 @@
 
 namespace litamin2 {
 
-enum class CorrespondenceMethod { Voxel27, KdTree };
+enum class CorrespondenceMethod { kVoxel27, kKdTree };
 
 /// The two map means nearest to a query, for reusing a search when the query moves
 /// (NearestCache).

@@ -13,11 +13,11 @@
 
 namespace litamin2 {
 
-enum class RegularizationMethod { EigenClamp, Plane };
+enum class RegularizationMethod { kEigenClamp, kPlane };
 
 struct RegularizerConfig {
   /// Which remedy to apply.
-  RegularizationMethod method = RegularizationMethod::EigenClamp;
+  RegularizationMethod method = RegularizationMethod::kEigenClamp;
   /// EigenClamp: floor of each eigenvalue relative to the largest, for the ICP term.
   double min_eigen_ratio = 1e-4;
   /// EigenClamp: the same floor for the Cov term's shapes.

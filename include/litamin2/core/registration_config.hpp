@@ -6,29 +6,29 @@
 namespace litamin2 {
 
 /// Which terms the cost has: the ICP term alone (Eq. 3), or ICP plus the Cov term (Eq. 4).
-enum class CostMode { Icp, IcpCov };
+enum class CostMode { kIcp, kIcpCov };
 
 /// How Newton's method treats the Cov term's second derivative 2 df df^T + 2 f d2f.
 enum class CovHessian {
   /// The exact Hessian; if the total is not positive definite, the f d2f part is dropped for
   /// that iteration.
-  Full,
+  kFull,
   /// Only the always positive semi-definite 2 df df^T (Gauss-Newton).
-  GaussNewton,
+  kGaussNewton,
 };
 
 /// The Cov term's energy: the paper's Eq. 4 squares the bracket f, its Table 1 does not.
 /// sigma_cov = 3 is defined on Eq. 4's form.
 enum class CovEnergy {
   /// E_cov = f^2 (Eq. 4).
-  Squared,
+  kSquared,
   /// E_cov = f (Table 1); f >= 0 since it is twice a symmetric KL divergence.
-  Linear,
+  kLinear,
 };
 
 struct RegistrationConfig {
   /// Terms of the cost.
-  CostMode mode = CostMode::IcpCov;
+  CostMode mode = CostMode::kIcpCov;
   /// Robust-weight scale of the ICP term. The paper uses 0.5; 0.1 measured 2-3x less drift on
   /// simulated sequences and closer agreement on the real KITTI pair (docs/accuracy.md). Below
   /// 0.05 icp+cov diverges: the Cov term (sigma_cov fixed) then outweighs the ICP term.
@@ -56,11 +56,11 @@ struct RegistrationConfig {
   /// the smallest tried that keeps the real KITTI pair test (docs/accuracy.md, "Pitch bias").
   double max_isotropy = 0.05;
   /// Form of the Cov term's energy.
-  CovEnergy cov_energy = CovEnergy::Linear;
+  CovEnergy cov_energy = CovEnergy::kLinear;
   /// Treatment of the Cov term's Hessian.
-  CovHessian cov_hessian = CovHessian::Full;
+  CovHessian cov_hessian = CovHessian::kFull;
   /// How the nearest map distribution is found.
-  CorrespondenceMethod correspondence = CorrespondenceMethod::KdTree;
+  CorrespondenceMethod correspondence = CorrespondenceMethod::kKdTree;
   /// Correspondences farther than this are ignored, metres; 0 means one voxel edge.
   double max_correspondence_distance = 0.0;
   /// Newton iteration limit.

@@ -13,17 +13,17 @@ namespace litamin2::io {
 enum class KittiBinLayout {
   /// Decide from the file: size a multiple of 16 only -> XYZI; of 12 only -> XYZ; of both
   /// (i.e. of 48) -> the interpretation that is plausible (see read_kitti_bin).
-  Auto,
+  kAuto,
   /// x, y, z, intensity as float32 (official KITTI).
-  XYZI,
+  kXYZI,
   /// x, y, z as float32, no intensity.
-  XYZ,
+  kXYZ,
 };
 
 /// Options of read_kitti_bin.
 struct KittiBinOptions {
   /// Record layout; Auto detects it from the file size and content.
-  KittiBinLayout layout = KittiBinLayout::Auto;
+  KittiBinLayout layout = KittiBinLayout::kAuto;
   /// Vertical intrinsic-calibration correction in degrees, as applied by KISS-ICP and CT-ICP to
   /// KITTI HDL-64 scans (they use 0.205): every point p is rotated by this angle about the axis
   /// p x (0,0,1), which tilts it upwards while keeping its range and azimuth. 0 (the default)

@@ -69,7 +69,7 @@ struct MapperCpu {
   double optimize_s = 0.0;
 };
 
-enum class AddStatus { Added, Duplicate };
+enum class AddStatus { kAdded, kDuplicate };
 
 class Mapper {
  public:

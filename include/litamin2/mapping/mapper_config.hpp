@@ -57,18 +57,18 @@ struct LoopVerificationConfig {
 enum class OdometryCovariance {
   /// Standard deviations proportional to the distance between the keyframes (the
   /// odometry_*_per_m keys), independent per axis.
-  Distance,
+  kDistance,
   /// The tracker's covariance of the later keyframe, carried to the relative pose
   /// (odometry_covariance.hpp), its standard deviations multiplied by tracker_covariance_scale,
   /// plus independent noise of the tracker_*_sigma_min standard deviations (a floor). Edges whose
   /// keyframe has no covariance (zero: the first frame, a failed registration) or that span a
   /// missing keyframe fall back to Distance.
-  Tracker,
+  kTracker,
 };
 
 /// Pose graph optimisation (pose_graph.hpp).
 struct PoseGraphConfig {
-  OdometryCovariance odometry_covariance = OdometryCovariance::Tracker;
+  OdometryCovariance odometry_covariance = OdometryCovariance::kTracker;
   /// Factor on the tracker's standard deviations (Tracker). The Hessian's covariance
   /// 2 sigma^2 H^-1 is only as right as its assumptions (independent residuals of one variance):
   /// the factor is calibrated so that the normalised errors e^T C^-1 e of consecutive

@@ -37,11 +37,11 @@ namespace litamin2::store {
 
 enum class OpenMode {
   /// Opens an existing store, or creates one if the file is missing or empty (0 bytes).
-  CreateIfMissing,
+  kCreateIfMissing,
   /// Opens an existing store for reading and writing; a missing or empty file is an error.
-  MustExist,
+  kMustExist,
   /// Opens an existing store for reading only; every write throws StoreError.
-  ReadOnly,
+  kReadOnly,
 };
 
 struct StoreOptions {

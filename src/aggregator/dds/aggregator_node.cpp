@@ -71,7 +71,7 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
       listener_(queue_) {
   store::StoreOptions options;
   options.synchronous_full = config_.store.synchronous_full;
-  core_ = std::make_unique<AggregatorCore>(config_.store.path, store::OpenMode::CreateIfMissing,
+  core_ = std::make_unique<AggregatorCore>(config_.store.path, store::OpenMode::kCreateIfMissing,
                                            config_.mapper, options, progress);
   spdlog::info("store {}: {} keyframe(s) of {} stream(s) recovered, {} loop edge(s)",
                config_.store.path, core_->recovered(), core_->mapper().stats().streams,
