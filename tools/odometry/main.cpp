@@ -1,5 +1,6 @@
 // litamin2-odometry: LiTAMIN2 odometry over a recorded sequence of scans.
 
+#include "common/frame_range.hpp"
 #include "common/progress.hpp"
 #include "litamin2/config/mapper_config_yaml.hpp"
 #include "litamin2/config/tracker_config_yaml.hpp"
@@ -68,18 +69,16 @@ void print_accuracy(const char* label, const std::optional<tools::Accuracy>& acc
               acc->ate_translation_m, acc->ate_rotation_deg);
 }
 
-/// Parses "A:B" (B exclusive, either side optional) against a sequence of `size` scans.
-std::pair<std::size_t, std::size_t> parse_frames(const std::string& text, std::size_t size) {
-  if (text.empty()) return {0, size};
-  const auto colon = text.find(':');
-  if (colon == std::string::npos)
-    throw CLI::ValidationError("--frames", "expected A:B, got " + text);
-  const std::string a = text.substr(0, colon), b = text.substr(colon + 1);
-  const std::size_t first = a.empty() ? 0 : std::stoul(a);
-  const std::size_t last = b.empty() ? size : std::min<std::size_t>(std::stoul(b), size);
-  if (first >= last)
-    throw CLI::ValidationError("--frames", text + " selects no scan of " + std::to_string(size));
-  return {first, last};
+/// The scans of --frames (all when empty) of a sequence of `size` scans; B beyond the end is
+/// clipped.
+std::pair<std::size_t, std::size_t> frames_of(const std::string& spec, std::size_t size) {
+  std::string error;
+  const auto range = tools::parse_frame_range(spec, &error);
+  if (!range) throw CLI::ValidationError("--frames", error);
+  const auto frames = range->within(size);
+  if (!frames)
+    throw CLI::ValidationError("--frames", spec + " selects no scan of " + std::to_string(size));
+  return *frames;
 }
 
 /// Tr from --kitti-calib: a calib file, a folder with calib.txt, or a sequence number that
@@ -124,7 +123,7 @@ int run(const Options& options) {
   io::KittiBinOptions bin;
   bin.vertical_angle_correction_deg = options.vertical_correction_deg;
   const io::ScanSequence sequence(options.input, bin);
-  const auto [first, last] = parse_frames(options.frames, sequence.size());
+  const auto [first, last] = frames_of(options.frames, sequence.size());
   const std::optional<Eigen::Isometry3d> tr = calibration(options, sequence);
   fs::create_directories(options.output);
 

@@ -4,38 +4,13 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
-#include <regex>
 
+#include "common/frame_range.hpp"
 #include "litamin2/service/topic_names.hpp"
 
 namespace litamin2::replay {
 
-namespace {
-
-/// Parses "A:B", "A:" or ":B" (B exclusive).
-bool parse_frames(const std::string& text, std::size_t& first, std::size_t& last,
-                  std::string& error) {
-  static const std::regex re(R"(^\s*(\d*)\s*:\s*(\d*)\s*$)");
-  std::smatch m;
-  if (!std::regex_match(text, m, re)) {
-    error = "--frames must look like A:B (B exclusive), A: or :B, got '" + text + "'";
-    return false;
-  }
-  try {
-    first = m[1].length() ? std::stoull(m[1]) : 0;
-    last = m[2].length() ? std::stoull(m[2]) : static_cast<std::size_t>(-1);
-  } catch (const std::exception&) {
-    error = "--frames " + text + ": number out of range";
-    return false;
-  }
-  if (first >= last) {
-    error = "--frames " + text + " is empty";
-    return false;
-  }
-  return true;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& should_exit) {
   should_exit = true;
@@ -135,9 +110,10 @@ int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& sh
   options.participant = *participant;
   options.participant.domain_id = domain;
   options.participant.name = "litamin2-replay";
-  if (!frames.empty() && !parse_frames(frames, options.first_frame, options.last_frame, error)) {
-    return fail(error);
-  }
+  const auto range = tools::parse_frame_range(frames, &error);
+  if (!range) return fail(error);
+  options.first_frame = range->first;
+  options.last_frame = range->last;
   should_exit = false;
   return 0;
 }

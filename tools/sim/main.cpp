@@ -11,10 +11,10 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <regex>
 #include <string>
 #include <vector>
 
+#include "common/frame_range.hpp"
 #include "litamin2/io/io_error.hpp"
 #include "litamin2/io/kitti_bin.hpp"
 #include "litamin2/io/kitti_calib.hpp"
@@ -33,22 +33,19 @@ namespace io = litamin2::io;
 
 namespace {
 
-/// Parses "A:B", "A:" or ":B" (half-open, B exclusive) against n frames.
-std::pair<std::size_t, std::size_t> parse_frames(const std::string& s, std::size_t n) {
-  static const std::regex re(R"(^\s*(\d*)\s*:\s*(\d*)\s*$)");
-  std::smatch m;
-  if (!std::regex_match(s, m, re)) {
-    throw std::invalid_argument("--frames must look like A:B (B exclusive), A: or :B, got '" + s +
-                                "'");
+/// The frames of --frames (all when empty) of a trajectory of n poses; the range must lie within
+/// it.
+std::pair<std::size_t, std::size_t> frames_of(const std::string& spec, std::size_t n) {
+  std::string error;
+  const auto range = litamin2::tools::parse_frame_range(spec, &error);
+  if (!range) throw std::invalid_argument(error);
+  if (range->last != std::numeric_limits<std::size_t>::max() && range->last > n) {
+    throw std::invalid_argument("--frames " + spec + " exceeds the trajectory's " +
+                                std::to_string(n) + " frames");
   }
-  const std::size_t a = m[1].length() ? std::stoull(m[1]) : 0;
-  const std::size_t b = m[2].length() ? std::stoull(m[2]) : n;
-  if (a >= b) throw std::invalid_argument("--frames " + s + " is empty");
-  if (b > n) {
-    throw std::invalid_argument("--frames " + s + " exceeds the trajectory's " + std::to_string(n) +
-                                " frames");
-  }
-  return {a, b};
+  const auto frames = range->within(n);
+  if (!frames) throw std::invalid_argument("--frames " + spec + " is empty");
+  return *frames;
 }
 
 /// Sequence number from a file name like ".../05.txt", if it is one.
@@ -161,9 +158,7 @@ int main(int argc, char** argv) {
       velo = sim::builtin_trajectory(builtin);
       spdlog::info("built-in trajectory '{}': {} poses", builtin, velo.size());
     }
-    const auto [first, last] = frames_spec.empty()
-                                   ? std::pair<std::size_t, std::size_t>{0, velo.size()}
-                                   : parse_frames(frames_spec, velo.size());
+    const auto [first, last] = frames_of(frames_spec, velo.size());
     // World frame: the velodyne frame of the first simulated frame (z up).
     const Eigen::Isometry3d to_world = velo[first].inverse();
     for (auto& T : velo) T = to_world * T;
