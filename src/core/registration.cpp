@@ -23,6 +23,7 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
   const Eigen::Vector3d y = pose * source.mean;
   const Eigen::Matrix3d rotated_cov = rotation * source.cov * rotation.transpose();
 
+  ++out.matched;
   // Round combined distributions (not in the paper, RegistrationConfig::max_isotropy): their
   // mean depends on the viewpoint, which Eq. 3's normalised precision weights in every direction.
   if (config.max_isotropy < 1.0 &&
@@ -37,6 +38,7 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
   out.gradient += w_icp * icp.gradient;
   out.hessian += w_icp * icp.hessian;
   ++out.correspondences;
+  if (w_icp >= 0.5) ++out.inliers;
   if (config.mode != CostMode::kIcpCov) return;
   if (std::min(source.count, target.count) < config.cov_min_points) return;
 
@@ -68,6 +70,8 @@ void add_into(CostEvaluation& total, const CostEvaluation& part) {
   total.hessian += part.hessian;
   total.cov_curvature += part.cov_curvature;
   total.correspondences += part.correspondences;
+  total.matched += part.matched;
+  total.inliers += part.inliers;
 }
 
 }  // namespace
@@ -115,18 +119,22 @@ RegistrationResult register_distributions(const std::vector<Distribution>& sourc
   RegistrationResult result;
   result.pose = initial;
   NearestCache cache(search, map.distributions(), source.size());
-  // Where the isotropy gate leaves too few correspondences (a scan of little flat structure),
-  // the scan is registered with every correspondence instead, as in the paper.
+  // Where the isotropy gate leaves too few correspondences (a scan of little flat structure, or
+  // a sparse scan of mostly round voxels), the scan is registered with every correspondence
+  // instead, as in the paper.
   RegistrationConfig active = config;
   for (int iteration = 0; iteration < config.max_iterations; ++iteration) {
     CostEvaluation eval = evaluate_cost(source, map, search, result.pose, active, &cache);
-    if (eval.correspondences < config.min_correspondences && active.max_isotropy < 1.0) {
+    if (active.max_isotropy < 1.0 &&
+        (eval.correspondences < config.min_correspondences ||
+         eval.correspondences < config.isotropy_min_share * eval.matched)) {
       active.max_isotropy = 1.0;
       eval = evaluate_cost(source, map, search, result.pose, active, &cache);
     }
     result.iterations = iteration + 1;
     result.cost = eval.cost;
     result.correspondences = eval.correspondences;
+    result.inliers = eval.inliers;
     result.hessian = eval.hessian;
     if (eval.correspondences < config.min_correspondences) {
       result.valid = false;

@@ -24,6 +24,8 @@ struct RegistrationResult {
   double cost = 0.0;
   /// Correspondences at the last iteration.
   int correspondences = 0;
+  /// Of these, those whose ICP energy was at most sigma_icp^2 (robust weight at least 1/2).
+  int inliers = 0;
   /// Newton iterations run.
   int iterations = 0;
   /// The update fell below the tolerances within max_iterations.
@@ -41,7 +43,12 @@ struct CostEvaluation {
   Matrix6d hessian = Matrix6d::Zero();
   /// The Cov term's f d2f part alone (rotation block), so the solver can drop it.
   Eigen::Matrix3d cov_curvature = Eigen::Matrix3d::Zero();
+  /// Correspondences used (after the registration gates).
   int correspondences = 0;
+  /// Source distributions with a map distribution within the search radius (before the gates).
+  int matched = 0;
+  /// Correspondences whose ICP energy is at most sigma_icp^2 (robust weight at least 1/2).
+  int inliers = 0;
 };
 
 /// Evaluates the cost of `source` (in its own frame) against `map` at `pose`. With a cache

@@ -51,10 +51,16 @@ struct RegistrationConfig {
   /// closer, than the scan sees them: their vertical offsets, of opposite sign ahead and behind,
   /// give every registration the same pitch error, which the Frobenius-normalised precision of
   /// a round distribution weights in every direction. A plane's precision weights only its
-  /// normal, along which the offset is small. If fewer than min_correspondences pass, the scan
-  /// is registered with all. 0.05 measured 3x less drift than 1 on simulated sequences and is
-  /// the smallest tried that keeps the real KITTI pair test (docs/accuracy.md, "Pitch bias").
+  /// normal, along which the offset is small. If fewer than min_correspondences pass, or fewer
+  /// than isotropy_min_share of the matched ones, the scan is registered with all. 0.05 measured
+  /// 3x less drift than 1 on simulated sequences and is the smallest tried that keeps the real
+  /// KITTI pair test (docs/accuracy.md, "Pitch bias").
   double max_isotropy = 0.05;
+  /// The isotropy gate is applied only while it keeps at least this share of the matched
+  /// correspondences (0: always). On simulated HDL-64 scans and the real KITTI pair it keeps
+  /// 56-60 %; on the real VLP-16 drive 13 %, which leaves too few walls to fix the horizontal
+  /// pose (docs/accuracy.md, "Sparse sensors"). Set by the sparse sensors' presets.
+  double isotropy_min_share = 0.0;
   /// Form of the Cov term's energy.
   CovEnergy cov_energy = CovEnergy::kLinear;
   /// Treatment of the Cov term's Hessian.
@@ -79,6 +85,18 @@ struct RegistrationConfig {
   double regrid_rotation_deg = 0.1;
   /// At most this many re-voxelisations per scan.
   int max_regrids = 10;
+  /// The re-grid loop is a fixed-point iteration (grid pose -> registered pose); after the first
+  /// re-grid, a further re-voxelisation is made only while the correction (in units of the
+  /// regrid tolerances) shrank to at most this fraction of the previous pass's. When it did
+  /// not, the loop stops at the previous pass's pose, the one the last grid was cut at: on
+  /// sparse scans each re-cut changes the distributions and the loop otherwise walks away from
+  /// a good pose (docs/accuracy.md, "Sparse sensors"). 0 (default): off, only max_regrids
+  /// bounds it. Off by default because it also stops registrations from large errors that
+  /// converge without shrinking at every pass (10 deg from the start: corrections 28, 5.9, 6.4,
+  /// 20.7, 3.0, 11.5, 67.7, 0.5 regrid tolerances, core_registration_test), and on the real
+  /// VLP-16 drive 0.5 cut voxelisations from 8.9 to 3.3 a frame without making the track
+  /// better (docs/accuracy.md, "Robust odometry on sparse sensors").
+  double regrid_contraction = 0.0;
   /// Source distributions per parallel block. Fixed, so that the ordered reduction gives the
   /// same bits whatever the thread count.
   int block_size = 64;
