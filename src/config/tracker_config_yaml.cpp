@@ -2,6 +2,7 @@
 
 #include "litamin2/config/config_file.hpp"
 #include "litamin2/config/yaml_section.hpp"
+#include "litamin2/core/sensor_preset.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -26,6 +27,38 @@ const std::vector<std::pair<std::string, CorrespondenceMethod>> kCorrespondences
     {"voxel27", CorrespondenceMethod::kVoxel27}, {"kdtree", CorrespondenceMethod::kKdTree}};
 const std::vector<std::pair<std::string, RegularizationMethod>> kRegularizations = {
     {"eigen_clamp", RegularizationMethod::kEigenClamp}, {"plane", RegularizationMethod::kPlane}};
+const std::vector<std::pair<std::string, EgoFilterMode>> kEgoModes = {
+    {"off", EgoFilterMode::kOff}, {"box", EgoFilterMode::kBox}, {"auto", EgoFilterMode::kAuto}};
+
+std::vector<std::pair<std::string, SensorModel>> sensor_names() {
+  std::vector<std::pair<std::string, SensorModel>> out;
+  for (SensorModel m :
+       {SensorModel::kAuto, SensorModel::kNone, SensorModel::kHdl64, SensorModel::kHdl32,
+        SensorModel::kVlp16, SensorModel::kOs1_64, SensorModel::kOs128})
+    out.emplace_back(sensor_name(m), m);
+  return out;
+}
+
+/// filter.ego_box: [xmin, ymin, zmin, xmax, ymax, zmax] (sensor frame, metres).
+void read_box(YamlSection& section, ScanFilterConfig& filter) {
+  const YAML::Node node = section.child("ego_box");
+  if (!node || node.IsNull()) return;
+  const std::string key = section.name("ego_box");
+  if (!node.IsSequence() || node.size() != 6)
+    throw ConfigError(key + ": expected [xmin, ymin, zmin, xmax, ymax, zmax], got '" +
+                      config::yaml_text(node) + "'");
+  double v[6];
+  for (std::size_t i = 0; i < 6; ++i) {
+    try {
+      v[i] = node[i].as<double>();
+    } catch (const YAML::Exception&) {
+      throw ConfigError(key + "[" + std::to_string(i) + "]: cannot read '" +
+                        config::yaml_text(node[i]) + "' as a number");
+    }
+  }
+  filter.ego_box_min = Eigen::Vector3d(v[0], v[1], v[2]);
+  filter.ego_box_max = Eigen::Vector3d(v[3], v[4], v[5]);
+}
 
 template <class Enum>
 std::string enum_name(Enum value, const std::vector<std::pair<std::string, Enum>>& names) {
@@ -35,16 +68,49 @@ std::string enum_name(Enum value, const std::vector<std::pair<std::string, Enum>
   return "?";
 }
 
+/// recovery.motion_scales: a list of numbers (may be empty).
+void read_scales(YamlSection& section, std::vector<double>& scales) {
+  const YAML::Node node = section.child("motion_scales");
+  if (!node || node.IsNull()) return;
+  const std::string key = section.name("motion_scales");
+  if (!node.IsSequence())
+    throw ConfigError(key + ": expected a list of numbers, got '" + config::yaml_text(node) + "'");
+  scales.clear();
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    try {
+      scales.push_back(node[i].as<double>());
+    } catch (const YAML::Exception&) {
+      throw ConfigError(key + "[" + std::to_string(i) + "]: cannot read '" +
+                        config::yaml_text(node[i]) + "' as a number");
+    }
+  }
+}
+
 }  // namespace
 
 TrackerConfig tracker_config_from_yaml(const YAML::Node& node) {
   TrackerConfig config;
   YamlSection root(node, "");
+  // Keys a sensor preset manages are recorded when given, so the preset leaves them alone.
+  auto read_managed = [&config](YamlSection& section, const char* key, auto& field) {
+    if (section.read(key, field)) config.explicit_keys.insert(section.name(key));
+  };
+  root.read_enum("sensor", config.sensor, sensor_names());
+
+  YamlSection filter(root.child("filter"), "filter");
+  ScanFilterConfig& f = config.filter;
+  filter.read_enum("ego", f.ego, kEgoModes);
+  read_box(filter, f);
+  filter.read("auto_radius", f.auto_radius);
+  filter.read("auto_cell", f.auto_cell);
+  filter.read("auto_scans", f.auto_scans);
+  filter.read("auto_min_share", f.auto_min_share);
+  filter.reject_unknown();
 
   YamlSection voxelizer(root.child("voxelizer"), "voxelizer");
   VoxelizerConfig& v = config.voxelizer;
-  voxelizer.read("voxel_size", v.voxel_size);
-  voxelizer.read("min_points", v.min_points);
+  read_managed(voxelizer, "voxel_size", v.voxel_size);
+  read_managed(voxelizer, "min_points", v.min_points);
   voxelizer.read("min_range", v.min_range);
   voxelizer.read("max_range", v.max_range);
   YamlSection regularizer(voxelizer.child("regularization"), "voxelizer.regularization");
@@ -63,10 +129,11 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node) {
   YamlSection registration(root.child("registration"), "registration");
   RegistrationConfig& r = config.registration;
   registration.read_enum("mode", r.mode, kModes);
-  registration.read("sigma_icp", r.sigma_icp);
+  read_managed(registration, "sigma_icp", r.sigma_icp);
   registration.read("sigma_cov", r.sigma_cov);
-  registration.read("cov_min_points", r.cov_min_points);
-  registration.read("max_isotropy", r.max_isotropy);
+  read_managed(registration, "cov_min_points", r.cov_min_points);
+  read_managed(registration, "max_isotropy", r.max_isotropy);
+  read_managed(registration, "isotropy_min_share", r.isotropy_min_share);
   registration.read("lambda", r.lambda);
   registration.read_enum("cov_energy", r.cov_energy, kCovEnergies);
   registration.read_enum("cov_hessian", r.cov_hessian, kCovHessians);
@@ -80,10 +147,19 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node) {
   registration.read("regrid_translation", r.regrid_translation);
   registration.read("regrid_rotation_deg", r.regrid_rotation_deg);
   registration.read("max_regrids", r.max_regrids);
+  registration.read("regrid_contraction", r.regrid_contraction);
   registration.reject_unknown();
 
+  YamlSection recovery(root.child("recovery"), "recovery");
+  RecoveryConfig& rec = config.recovery;
+  recovery.read("enabled", rec.enabled);
+  recovery.read("trigger_ratio", rec.trigger_ratio);
+  read_scales(recovery, rec.motion_scales);
+  recovery.read("share_smoothing", rec.share_smoothing);
+  recovery.reject_unknown();
+
   YamlSection keyframe(root.child("keyframe"), "keyframe");
-  keyframe.read("distance", config.keyframe.distance);
+  read_managed(keyframe, "distance", config.keyframe.distance);
   keyframe.read("angle_deg", config.keyframe.angle_deg);
   keyframe.reject_unknown();
 
@@ -101,6 +177,18 @@ TrackerConfig load_tracker_config(const std::string& path) {
 std::string tracker_config_to_yaml(const TrackerConfig& c) {
   YAML::Emitter out;
   out << YAML::BeginMap;
+  out << YAML::Key << "sensor" << YAML::Value << sensor_name(c.sensor);
+  const ScanFilterConfig& f = c.filter;
+  out << YAML::Key << "filter" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "ego" << YAML::Value << enum_name(f.ego, kEgoModes);
+  out << YAML::Key << "ego_box" << YAML::Value << YAML::Flow << YAML::BeginSeq << f.ego_box_min.x()
+      << f.ego_box_min.y() << f.ego_box_min.z() << f.ego_box_max.x() << f.ego_box_max.y()
+      << f.ego_box_max.z() << YAML::EndSeq;
+  out << YAML::Key << "auto_radius" << YAML::Value << f.auto_radius;
+  out << YAML::Key << "auto_cell" << YAML::Value << f.auto_cell;
+  out << YAML::Key << "auto_scans" << YAML::Value << f.auto_scans;
+  out << YAML::Key << "auto_min_share" << YAML::Value << f.auto_min_share;
+  out << YAML::EndMap;
   out << YAML::Key << "voxelizer" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "voxel_size" << YAML::Value << c.voxelizer.voxel_size;
   out << YAML::Key << "min_points" << YAML::Value << c.voxelizer.min_points;
@@ -124,6 +212,7 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "sigma_cov" << YAML::Value << r.sigma_cov;
   out << YAML::Key << "cov_min_points" << YAML::Value << r.cov_min_points;
   out << YAML::Key << "max_isotropy" << YAML::Value << r.max_isotropy;
+  out << YAML::Key << "isotropy_min_share" << YAML::Value << r.isotropy_min_share;
   out << YAML::Key << "lambda" << YAML::Value << r.lambda;
   out << YAML::Key << "cov_energy" << YAML::Value << enum_name(r.cov_energy, kCovEnergies);
   out << YAML::Key << "cov_hessian" << YAML::Value << enum_name(r.cov_hessian, kCovHessians);
@@ -138,6 +227,13 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "regrid_translation" << YAML::Value << r.regrid_translation;
   out << YAML::Key << "regrid_rotation_deg" << YAML::Value << r.regrid_rotation_deg;
   out << YAML::Key << "max_regrids" << YAML::Value << r.max_regrids;
+  out << YAML::Key << "regrid_contraction" << YAML::Value << r.regrid_contraction;
+  out << YAML::EndMap;
+  out << YAML::Key << "recovery" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "enabled" << YAML::Value << c.recovery.enabled;
+  out << YAML::Key << "trigger_ratio" << YAML::Value << c.recovery.trigger_ratio;
+  out << YAML::Key << "motion_scales" << YAML::Value << YAML::Flow << c.recovery.motion_scales;
+  out << YAML::Key << "share_smoothing" << YAML::Value << c.recovery.share_smoothing;
   out << YAML::EndMap;
   out << YAML::Key << "keyframe" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "distance" << YAML::Value << c.keyframe.distance;

@@ -1,6 +1,7 @@
 #include "litamin2/core/tracker.hpp"
 
 #include "litamin2/core/scan_registration.hpp"
+#include "litamin2/core/sensor_preset.hpp"
 #include "litamin2/core/stopwatch.hpp"
 
 #include <Eigen/Cholesky>
@@ -14,6 +15,19 @@ double rotation_angle(const Eigen::Matrix3d& rotation) {
   return Eigen::AngleAxisd(rotation).angle();
 }
 
+double inlier_share(const ScanRegistration& r) {
+  return r.source.empty() ? 0.0 : static_cast<double>(r.result.inliers) / r.source.size();
+}
+
+/// The motion `velocity` scaled by s: s times the translation and s times the rotation angle.
+Eigen::Isometry3d scaled_motion(const Eigen::Isometry3d& velocity, double s) {
+  const Eigen::AngleAxisd rotation(velocity.linear());
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  out.linear() = Eigen::AngleAxisd(s * rotation.angle(), rotation.axis()).toRotationMatrix();
+  out.translation() = s * velocity.translation();
+  return out;
+}
+
 /// 2 sigma^2 H^-1, sigma^2 = cost per residual degree of freedom (3 per correspondence).
 Matrix6d covariance_from_hessian(const RegistrationResult& result) {
   const double dof = std::max(1.0, 3.0 * result.correspondences - 6.0);
@@ -23,12 +37,21 @@ Matrix6d covariance_from_hessian(const RegistrationResult& result) {
   return 2.0 * sigma_sq * ldlt.solve(Matrix6d::Identity());
 }
 
+TrackerConfig with_preset(const TrackerConfig& config) {
+  validate(config);
+  TrackerConfig out = config;
+  apply_sensor_preset(config.sensor, out);
+  validate(out);
+  return out;
+}
+
 }  // namespace
 
 Tracker::Tracker(const TrackerConfig& config)
-    : config_((validate(config), config)),
-      voxelizer_(config.voxelizer),
-      map_(config.voxelizer, config.map) {}
+    : config_(with_preset(config)),
+      ego_(config_.filter),
+      voxelizer_(config_.voxelizer),
+      map_(config_.voxelizer, config_.map) {}
 
 Tracker::~Tracker() = default;
 
@@ -38,19 +61,77 @@ bool Tracker::is_keyframe(const Eigen::Isometry3d& pose) const {
          rotation_angle(motion.linear()) >= config_.keyframe.angle_deg * M_PI / 180.0;
 }
 
-FrameResult Tracker::process(const PointCloud& scan) {
+const PointCloud& Tracker::without_self_hits(const PointCloud& scan, int& dropped) {
+  dropped = 0;
+  const ScanFilterConfig& f = config_.filter;
+  bool filtered = false;
+  if (f.ego == EgoFilterMode::kBox) {
+    remove_box(scan, f.ego_box_min, f.ego_box_max, filtered_);
+    filtered = true;
+  } else if (f.ego == EgoFilterMode::kAuto) {
+    ego_.observe(scan);
+    filtered = ego_.filter(scan, filtered_);
+  }
+  if (!filtered) return scan;
+  dropped = static_cast<int>(scan.points.size() - filtered_.points.size());
+  return filtered_;
+}
+
+FrameResult Tracker::process(const PointCloud& raw) {
+  if (frames_ == 0 && config_.sensor == SensorModel::kAuto) {
+    // `sensor: auto`: the first scan decides the preset; the (empty) voxeliser and map are
+    // rebuilt with its values.
+    apply_sensor_preset(nearest_sensor(measure_signature(raw)), config_);
+    validate(config_);
+    ego_ = EgoLearner(config_.filter);
+    voxelizer_ = Voxelizer(config_.voxelizer);
+    map_ = VoxelMap(config_.voxelizer, config_.map);
+  }
   FrameResult frame;
+  const PointCloud& scan = without_self_hits(raw, frame.self_hits);
   const Eigen::Isometry3d predicted = pose_ * velocity_;
   Eigen::Isometry3d estimate = predicted;
   if (frames_ > 0 && !map_.empty() && search_) {
-    const ScanRegistration registration =
+    ScanRegistration registration =
         register_scan(scan, voxelizer_, map_, *search_, predicted, config_.registration);
+    double share = registration.result.valid ? inlier_share(registration) : 0.0;
+    const RecoveryConfig& recovery = config_.recovery;
+    if (recovery.enabled && typical_share_ > 0.0 &&
+        share < recovery.trigger_ratio * typical_share_) {
+      // Registration settles near its start: try the other starts and keep the best fit. The
+      // voxeliser's grid voxels must be those of the kept registration (the map merges them).
+      frame.retried = true;
+      for (double s : recovery.motion_scales) {
+        ScanRegistration other =
+            register_scan(scan, voxelizer_, map_, *search_, pose_ * scaled_motion(velocity_, s),
+                          config_.registration);
+        const double other_share = other.result.valid ? inlier_share(other) : 0.0;
+        registration.voxelize_ms += other.voxelize_ms;
+        registration.register_ms += other.register_ms;
+        if (other_share > share) {
+          other.voxelize_ms = registration.voxelize_ms;
+          other.register_ms = registration.register_ms;
+          registration = std::move(other);
+          share = other_share;
+          frame.recovered = true;
+        }
+      }
+      // The voxeliser now holds the last try's grid voxels: re-cut the kept one's grid.
+      voxelizer_.voxelize(scan, registration.grid_pose);
+    }
+    frame.inlier_share = share;
+    if (registration.result.valid) {
+      typical_share_ = typical_share_ < 0.0 ? share
+                                            : (1.0 - recovery.share_smoothing) * typical_share_ +
+                                                  recovery.share_smoothing * share;
+    }
     const RegistrationResult& result = registration.result;
     source_ = registration.source;
     frame.times.voxelize_ms = registration.voxelize_ms;
     frame.times.register_ms = registration.register_ms;
     frame.iterations = result.iterations;
     frame.voxelizations = registration.voxelizations;
+    frame.regrid_stopped = registration.regrid_stopped;
     frame.correspondences = result.correspondences;
     if (result.valid) {
       estimate = result.pose;

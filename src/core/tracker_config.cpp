@@ -16,6 +16,25 @@ void require(bool ok, const std::string& key, double value, const std::string& r
 }  // namespace
 
 void validate(const TrackerConfig& c) {
+  const ScanFilterConfig& f = c.filter;
+  if (f.ego == EgoFilterMode::kBox) {
+    for (int i = 0; i < 3; ++i) {
+      require(std::isfinite(f.ego_box_min(i)) && std::isfinite(f.ego_box_max(i)) &&
+                  f.ego_box_min(i) < f.ego_box_max(i),
+              "filter.ego_box", f.ego_box_max(i) - f.ego_box_min(i),
+              "[xmin, ymin, zmin, xmax, ymax, zmax] with each min below its max");
+    }
+  }
+  require(std::isfinite(f.auto_radius) && f.auto_radius > 0.0 && f.auto_radius <= 20.0,
+          "filter.auto_radius", f.auto_radius, "metres, above 0 and at most 20");
+  require(std::isfinite(f.auto_cell) && f.auto_cell >= 0.05 && f.auto_cell <= f.auto_radius,
+          "filter.auto_cell", f.auto_cell, "metres, 0.05 to auto_radius");
+  require(f.auto_radius / f.auto_cell <= 64.0, "filter.auto_cell", f.auto_cell,
+          "at least auto_radius / 64 (the cell grid is at most 128 cells a side)");
+  require(f.auto_scans >= 1 && f.auto_scans <= 1000, "filter.auto_scans", f.auto_scans,
+          "1 to 1000");
+  require(f.auto_min_share > 0.0 && f.auto_min_share <= 1.0, "filter.auto_min_share",
+          f.auto_min_share, "in (0, 1]");
   const VoxelizerConfig& v = c.voxelizer;
   require(std::isfinite(v.voxel_size) && v.voxel_size >= 0.05 && v.voxel_size <= 50.0,
           "voxelizer.voxel_size", v.voxel_size, "metres, 0.05 to 50");
@@ -38,6 +57,8 @@ void validate(const TrackerConfig& c) {
   require(r.cov_min_points >= 0, "registration.cov_min_points", r.cov_min_points, "at least 0");
   require(r.max_isotropy > 0.0 && r.max_isotropy <= 1.0, "registration.max_isotropy",
           r.max_isotropy, "in (0, 1]; 1 keeps every correspondence");
+  require(r.isotropy_min_share >= 0.0 && r.isotropy_min_share <= 1.0,
+          "registration.isotropy_min_share", r.isotropy_min_share, "in [0, 1]; 0 always gates");
   require(r.lambda >= 0.0, "registration.lambda", r.lambda, "at least 0");
   require(r.max_correspondence_distance >= 0.0, "registration.max_correspondence_distance",
           r.max_correspondence_distance, "at least 0; 0 means one voxel");
@@ -60,6 +81,18 @@ void validate(const TrackerConfig& c) {
           "positive");
   require(r.max_regrids >= 0 && r.max_regrids <= 100, "registration.max_regrids", r.max_regrids,
           "0 to 100");
+  require(std::isfinite(r.regrid_contraction) && r.regrid_contraction >= 0.0,
+          "registration.regrid_contraction", r.regrid_contraction,
+          "at least 0; 0: off, bounded by max_regrids only");
+  const RecoveryConfig& rec = c.recovery;
+  require(rec.trigger_ratio > 0.0 && rec.trigger_ratio <= 1.0, "recovery.trigger_ratio",
+          rec.trigger_ratio, "in (0, 1]");
+  require(rec.motion_scales.size() <= 16, "recovery.motion_scales",
+          static_cast<double>(rec.motion_scales.size()), "at most 16 starts");
+  for (double s : rec.motion_scales)
+    require(std::isfinite(s) && s >= 0.0 && s <= 10.0, "recovery.motion_scales", s, "each 0 to 10");
+  require(rec.share_smoothing > 0.0 && rec.share_smoothing <= 1.0, "recovery.share_smoothing",
+          rec.share_smoothing, "in (0, 1]");
   require(c.keyframe.distance >= 0.0, "keyframe.distance", c.keyframe.distance, "at least 0");
   require(c.keyframe.angle_deg >= 0.0, "keyframe.angle_deg", c.keyframe.angle_deg, "at least 0");
 }

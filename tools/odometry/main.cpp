@@ -5,6 +5,7 @@
 #include "litamin2/config/mapper_config_yaml.hpp"
 #include "litamin2/config/tracker_config_yaml.hpp"
 #include "litamin2/core/config_error.hpp"
+#include "litamin2/core/sensor_preset.hpp"
 #include "litamin2/core/stopwatch.hpp"
 #include "litamin2/core/tracker.hpp"
 #include "litamin2/eval/ate.hpp"
@@ -117,7 +118,10 @@ int run(const Options& options) {
       options.config_file.empty() ? TrackerConfig{} : load_tracker_config(options.config_file);
   if (options.mode == "icp") config.registration.mode = CostMode::kIcp;
   if (options.mode == "icp+cov") config.registration.mode = CostMode::kIcpCov;
-  if (options.voxel_size > 0.0) config.voxelizer.voxel_size = options.voxel_size;
+  if (options.voxel_size > 0.0) {
+    config.voxelizer.voxel_size = options.voxel_size;
+    config.explicit_keys.insert("voxelizer.voxel_size");  // a sensor preset leaves it
+  }
   validate(config);
 
   io::KittiBinOptions bin;
@@ -177,22 +181,25 @@ int run(const Options& options) {
     timed.push_back({sequence.timestamp(first + i), poses[i]});
   io::write_kitti_poses((out / "poses_kitti.txt").string(), poses);
   io::write_tum((out / "poses_tum.txt").string(), timed);
-  std::ofstream((out / "config.yaml").string()) << tracker_config_to_yaml(config);
+  // The config in use (with `sensor: auto`, the recognised sensor's preset applied).
+  std::ofstream((out / "config.yaml").string()) << tracker_config_to_yaml(tracker.config());
   std::optional<tools::Accuracy> acc;
   if (tr) {
     const auto poses_cam = io::velo_to_cam_trajectory(poses, *tr);
     io::write_kitti_poses((out / "poses_kitti_cam.txt").string(), poses_cam);
     acc = accuracy(sequence, tr, poses_cam, first);
   }
-  const std::string mode = config.registration.mode == CostMode::kIcp ? "icp" : "icp+cov";
+  const TrackerConfig& used = tracker.config();
+  const std::string mode = used.registration.mode == CostMode::kIcp ? "icp" : "icp+cov";
+  const std::string sensor = sensor_name(used.sensor);
   std::ofstream((fs::path(options.output) / "stats.json").string())
-      << stats.to_json(mode, config.voxelizer.voxel_size, threads, wall, acc);
+      << stats.to_json(mode, sensor, used.voxelizer.voxel_size, threads, wall, acc);
 
   if (!options.quiet) {
     std::printf(
-        "%zu frames, %s, %.1f m voxels, %d thread(s): %.0f frames/s (per frame p50 %.2f ms, "
-        "p99 %.2f ms), %zu keyframes, %zu registration failures\n",
-        stats.frames(), mode.c_str(), config.voxelizer.voxel_size, threads,
+        "%zu frames, %s, sensor %s, %.1f m voxels, %d thread(s): %.0f frames/s (per frame p50 "
+        "%.2f ms, p99 %.2f ms), %zu keyframes, %zu registration failures\n",
+        stats.frames(), mode.c_str(), sensor.c_str(), used.voxelizer.voxel_size, threads,
         stats.frames_per_second(), stats.percentile_ms(50), stats.percentile_ms(99),
         stats.keyframes(), stats.failures());
     if (loop_closure) {

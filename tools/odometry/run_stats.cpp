@@ -19,6 +19,10 @@ void RunStats::add(const FrameResult& frame) {
   distributions_ += static_cast<std::size_t>(frame.source_distributions);
   iterations_ += static_cast<std::size_t>(frame.iterations);
   voxelizations_ += static_cast<std::size_t>(frame.voxelizations);
+  regrid_stops_ += frame.regrid_stopped ? 1 : 0;
+  retries_ += frame.retried ? 1 : 0;
+  recoveries_ += frame.recovered ? 1 : 0;
+  self_hits_ += static_cast<std::size_t>(frame.self_hits);
 }
 
 double RunStats::frames_per_second() const {
@@ -39,14 +43,16 @@ double RunStats::max_ms() const {
   return total_ms_.empty() ? 0.0 : *std::max_element(total_ms_.begin(), total_ms_.end());
 }
 
-std::string RunStats::to_json(const std::string& mode, double voxel_size, int threads,
-                              double wall_seconds, const std::optional<Accuracy>& accuracy) const {
+std::string RunStats::to_json(const std::string& mode, const std::string& sensor, double voxel_size,
+                              int threads, double wall_seconds,
+                              const std::optional<Accuracy>& accuracy) const {
   const double n = std::max<double>(1.0, static_cast<double>(frames()));
   std::ostringstream out;
   out.precision(6);
   out << "{\n"
       << "  \"frames\": " << frames() << ",\n"
       << "  \"mode\": \"" << mode << "\",\n"
+      << "  \"sensor\": \"" << sensor << "\",\n"
       << "  \"voxel_size\": " << voxel_size << ",\n"
       << "  \"threads\": " << threads << ",\n"
       << "  \"frames_per_second\": " << frames_per_second() << ",\n"
@@ -59,6 +65,10 @@ std::string RunStats::to_json(const std::string& mode, double voxel_size, int th
       << "  \"mean_distributions_per_scan\": " << distributions_ / n << ",\n"
       << "  \"mean_newton_iterations\": " << iterations_ / n << ",\n"
       << "  \"mean_voxelizations\": " << voxelizations_ / n << ",\n"
+      << "  \"regrid_stops\": " << regrid_stops_ << ",\n"
+      << "  \"recovery_retries\": " << retries_ << ",\n"
+      << "  \"recovery_kept\": " << recoveries_ << ",\n"
+      << "  \"mean_self_hits_dropped\": " << self_hits_ / n << ",\n"
       << "  \"keyframes\": " << keyframes_ << ",\n"
       << "  \"registration_failures\": " << failures_ << ",\n"
       << "  \"peak_memory_mib\": " << peak_memory_mib();

@@ -29,7 +29,8 @@ class RunStats {
   std::size_t failures() const { return failures_; }
 
   /// The stats.json document.
-  std::string to_json(const std::string& mode, double voxel_size, int threads, double wall_seconds,
+  std::string to_json(const std::string& mode, const std::string& sensor, double voxel_size,
+                      int threads, double wall_seconds,
                       const std::optional<Accuracy>& accuracy) const;
 
  private:
@@ -40,6 +41,10 @@ class RunStats {
   std::size_t distributions_ = 0;
   std::size_t iterations_ = 0;
   std::size_t voxelizations_ = 0;
+  std::size_t regrid_stops_ = 0;
+  std::size_t retries_ = 0;
+  std::size_t recoveries_ = 0;
+  std::size_t self_hits_ = 0;
 };
 
 /// Peak resident memory of this process, MiB.

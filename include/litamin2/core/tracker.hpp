@@ -5,6 +5,7 @@
 #include "litamin2/core/correspondence_search.hpp"
 #include "litamin2/core/keyframe.hpp"
 #include "litamin2/core/registration.hpp"
+#include "litamin2/core/scan_filter.hpp"
 #include "litamin2/core/tracker_config.hpp"
 #include "litamin2/core/voxel_map.hpp"
 #include "litamin2/core/voxelizer.hpp"
@@ -37,6 +38,16 @@ struct FrameResult {
   int iterations = 0;
   /// Times the scan was voxelised (1 + re-voxelisations after large corrections).
   int voxelizations = 0;
+  /// The re-grid loop stopped because a re-voxelisation did not shrink the correction.
+  bool regrid_stopped = false;
+  /// Points dropped as self-hits (ScanFilterConfig).
+  int self_hits = 0;
+  /// Share of the source distributions matched as inliers (robust weight at least 1/2).
+  double inlier_share = 0.0;
+  /// The scan was registered again from other starts (RecoveryConfig); `recovered` if one of
+  /// them fitted better than the prediction's.
+  bool retried = false;
+  bool recovered = false;
   int source_distributions = 0;
   int correspondences = 0;
   StageTimes times;
@@ -44,7 +55,9 @@ struct FrameResult {
 
 class Tracker {
  public:
-  /// Throws ConfigError if the config is invalid.
+  /// Throws ConfigError if the config is invalid. A named config.sensor applies its preset
+  /// here (to the keys not in config.explicit_keys); kAuto recognises the sensor from the first
+  /// scan (sensor_preset.hpp) and applies its preset then.
   explicit Tracker(const TrackerConfig& config);
   ~Tracker();
 
@@ -55,13 +68,20 @@ class Tracker {
   const VoxelMap& map() const { return map_; }
   /// Distributions of the last processed scan, sensor frame.
   const std::vector<Distribution>& last_distributions() const { return source_; }
+  /// The config in use: after the first scan with `sensor: auto`, the recognised sensor's.
   const TrackerConfig& config() const { return config_; }
+  /// Self-hit cells learnt (ScanFilterConfig, EgoFilterMode::kAuto), 0 before they are decided.
+  std::size_t ego_cells() const { return ego_.cells(); }
   std::size_t frames() const { return frames_; }
 
  private:
   bool is_keyframe(const Eigen::Isometry3d& pose) const;
+  /// The scan without its self-hits (the scan itself when there is nothing to drop).
+  const PointCloud& without_self_hits(const PointCloud& scan, int& dropped);
 
   TrackerConfig config_;
+  EgoLearner ego_;
+  PointCloud filtered_;
   Voxelizer voxelizer_;
   VoxelMap map_;
   std::unique_ptr<CorrespondenceSearch> search_;
@@ -70,6 +90,8 @@ class Tracker {
   Eigen::Isometry3d velocity_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d last_keyframe_ = Eigen::Isometry3d::Identity();
   std::size_t frames_ = 0;
+  /// Running typical inlier share of registered frames (RecoveryConfig), negative before any.
+  double typical_share_ = -1.0;
 };
 
 /// The keyframe of a frame the tracker has just added to its map (frame.keyframe is true): the

@@ -4,10 +4,19 @@
 
 #include "litamin2/core/config_error.hpp"
 #include "litamin2/core/registration_config.hpp"
+#include "litamin2/core/scan_filter.hpp"
 #include "litamin2/core/voxel_map.hpp"
 #include "litamin2/core/voxelizer.hpp"
 
+#include <set>
+#include <string>
+#include <vector>
+
 namespace litamin2 {
+
+/// The LiDAR a config is for (sensor_preset.hpp): a preset sets the parameters that depend on
+/// it; kAuto recognises it from the first scan; kNone keeps every value as configured.
+enum class SensorModel { kAuto, kNone, kHdl64, kHdl32, kVlp16, kOs1_64, kOs128 };
 
 struct KeyframeConfig {
   /// A frame that moved this far from the last keyframe becomes a keyframe, metres.
@@ -16,7 +25,27 @@ struct KeyframeConfig {
   double angle_deg = 5.0;
 };
 
+/// Recovery when the constant-velocity prediction is wrong (frames dropped or irregularly
+/// spaced, docs/accuracy.md "Sparse sensors"): registration converges near where it starts, so a
+/// scan that fits the map badly from the prediction is registered again from other starts.
+struct RecoveryConfig {
+  /// Off: the constant-velocity prediction is the only start.
+  bool enabled = true;
+  /// A registration whose inlier share (source distributions matched with a robust weight of at
+  /// least 1/2) is below this fraction of the typical share of recent frames is retried.
+  double trigger_ratio = 0.7;
+  /// The other starts: the constant-velocity motion scaled by these factors (0: standing still,
+  /// 2: one frame dropped).
+  std::vector<double> motion_scales = {0.0, 0.5, 1.5, 2.0, 3.0};
+  /// Weight of a new frame in the running typical inlier share.
+  double share_smoothing = 0.1;
+};
+
 struct TrackerConfig {
+  /// Which sensor preset applies (to the keys not in explicit_keys).
+  SensorModel sensor = SensorModel::kAuto;
+  /// Points dropped before voxelisation (self-hits).
+  ScanFilterConfig filter;
   /// Scan voxelisation; the map uses the same voxel size, point limits and regularisation.
   VoxelizerConfig voxelizer;
   /// Map extent.
@@ -25,6 +54,11 @@ struct TrackerConfig {
   RegistrationConfig registration;
   /// When the map is updated.
   KeyframeConfig keyframe;
+  /// Other starts when the prediction fits badly.
+  RecoveryConfig recovery;
+  /// Dotted keys set explicitly (by a config file or a command-line option): a sensor preset
+  /// leaves them as they are.
+  std::set<std::string> explicit_keys;
 };
 
 /// Throws ConfigError on the first invalid value.

@@ -1,0 +1,172 @@
+#include "litamin2/core/sensor_preset.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <limits>
+
+namespace litamin2 {
+namespace {
+
+struct Nominal {
+  SensorModel model;
+  const char* name;
+  int beams;
+  double low_deg, high_deg;
+};
+
+constexpr std::array<Nominal, 5> kNominal = {{
+    {SensorModel::kVlp16, "vlp16", 16, -15.0, 15.0},
+    {SensorModel::kHdl32, "hdl32", 32, -30.67, 10.67},
+    {SensorModel::kHdl64, "hdl64", 64, -24.9, 2.0},
+    {SensorModel::kOs1_64, "os1-64", 64, -16.6, 16.6},
+    {SensorModel::kOs128, "os-128", 128, -22.5, 22.5},
+}};
+
+/// The values a preset gives the managed keys.
+struct Preset {
+  double voxel_size;
+  int min_points;
+  double max_isotropy;
+  double isotropy_min_share;
+  int cov_min_points;
+  double sigma_icp;
+  double keyframe_distance;
+};
+
+/// Dense sensors keep the defaults that were measured on simulated HDL-64 sequences
+/// (docs/accuracy.md); sparse ones (16 and 32 beams) differ where docs/accuracy.md, "Sparse
+/// sensors", measured a reason to.
+Preset preset_of(SensorModel model) {
+  const TrackerConfig d;
+  Preset p{d.voxelizer.voxel_size,
+           d.voxelizer.min_points,
+           d.registration.max_isotropy,
+           d.registration.isotropy_min_share,
+           d.registration.cov_min_points,
+           d.registration.sigma_icp,
+           d.keyframe.distance};
+  if (model == SensorModel::kVlp16 || model == SensorModel::kHdl32) {
+    // The isotropy gate keeps 13 % of the correspondences on the real VLP-16 drive.
+    p.isotropy_min_share = 0.25;
+  }
+  return p;
+}
+
+struct Key {
+  const char* name;
+  std::function<void(const Preset&, TrackerConfig&)> set;
+};
+
+const std::vector<Key>& keys() {
+  static const std::vector<Key> k = {
+      {"voxelizer.voxel_size",
+       [](const Preset& p, TrackerConfig& c) { c.voxelizer.voxel_size = p.voxel_size; }},
+      {"voxelizer.min_points",
+       [](const Preset& p, TrackerConfig& c) { c.voxelizer.min_points = p.min_points; }},
+      {"registration.max_isotropy",
+       [](const Preset& p, TrackerConfig& c) { c.registration.max_isotropy = p.max_isotropy; }},
+      {"registration.isotropy_min_share",
+       [](const Preset& p, TrackerConfig& c) {
+         c.registration.isotropy_min_share = p.isotropy_min_share;
+       }},
+      {"registration.cov_min_points",
+       [](const Preset& p, TrackerConfig& c) { c.registration.cov_min_points = p.cov_min_points; }},
+      {"registration.sigma_icp",
+       [](const Preset& p, TrackerConfig& c) { c.registration.sigma_icp = p.sigma_icp; }},
+      {"keyframe.distance",
+       [](const Preset& p, TrackerConfig& c) { c.keyframe.distance = p.keyframe_distance; }},
+  };
+  return k;
+}
+
+}  // namespace
+
+SensorSignature measure_signature(const PointCloud& scan) {
+  // Elevation histogram in 0.05 deg bins over -45..+45 deg.
+  constexpr double kBin = 0.05, kLow = -45.0;
+  constexpr int kBins = 1800;
+  std::vector<int> histogram(kBins, 0);
+  SensorSignature out;
+  for (const Eigen::Vector3f& p : scan.points) {
+    const double horizontal = std::hypot(p.x(), p.y());
+    const double range_sq = horizontal * horizontal + double(p.z()) * p.z();
+    if (!(range_sq >= 2.5 * 2.5 && range_sq <= 120.0 * 120.0)) continue;
+    const double elevation = std::atan2(p.z(), horizontal) * 180.0 / M_PI;
+    const int bin = static_cast<int>(std::floor((elevation - kLow) / kBin));
+    if (bin < 0 || bin >= kBins) continue;
+    ++histogram[bin];
+    ++out.points;
+  }
+  // A beam is a run of bins each holding at least 0.05 % of the points (at least 2).
+  const int occupied = std::max(2, static_cast<int>(0.0005 * out.points));
+  int first = -1, last = -1;
+  bool in_run = false;
+  for (int b = 0; b < kBins; ++b) {
+    const bool full = histogram[b] >= occupied;
+    if (full && !in_run) ++out.rings;
+    if (full) {
+      if (first < 0) first = b;
+      last = b;
+    }
+    in_run = full;
+  }
+  if (first >= 0) {
+    out.lowest_deg = kLow + (first + 0.5) * kBin;
+    out.highest_deg = kLow + (last + 0.5) * kBin;
+  }
+  return out;
+}
+
+SensorModel nearest_sensor(const SensorSignature& s) {
+  if (s.rings <= 0) return SensorModel::kHdl64;
+  double best = std::numeric_limits<double>::infinity();
+  SensorModel model = SensorModel::kHdl64;
+  for (const Nominal& n : kNominal) {
+    const double d =
+        std::abs(std::log2(double(s.rings) / n.beams)) +
+        (std::abs(s.lowest_deg - n.low_deg) + std::abs(s.highest_deg - n.high_deg)) / 5.0;
+    if (d < best) {
+      best = d;
+      model = n.model;
+    }
+  }
+  return model;
+}
+
+void apply_sensor_preset(SensorModel model, TrackerConfig& config) {
+  if (model == SensorModel::kNone || model == SensorModel::kAuto) return;
+  const Preset preset = preset_of(model);
+  for (const Key& key : keys()) {
+    if (!config.explicit_keys.count(key.name)) key.set(preset, config);
+  }
+  config.sensor = model;
+}
+
+const std::vector<std::string>& sensor_preset_keys() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const Key& key : keys()) out.push_back(key.name);
+    return out;
+  }();
+  return names;
+}
+
+const char* sensor_name(SensorModel model) {
+  if (model == SensorModel::kAuto) return "auto";
+  if (model == SensorModel::kNone) return "none";
+  for (const Nominal& n : kNominal)
+    if (n.model == model) return n.name;
+  return "?";
+}
+
+std::optional<SensorModel> sensor_from_name(const std::string& name) {
+  for (SensorModel m :
+       {SensorModel::kAuto, SensorModel::kNone, SensorModel::kHdl64, SensorModel::kHdl32,
+        SensorModel::kVlp16, SensorModel::kOs1_64, SensorModel::kOs128})
+    if (name == sensor_name(m)) return m;
+  return std::nullopt;
+}
+
+}  // namespace litamin2
