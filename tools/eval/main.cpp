@@ -6,11 +6,13 @@
 #include <exception>
 #include <iostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "litamin2/eval/ate.hpp"
 #include "litamin2/eval/kitti_metrics.hpp"
 #include "litamin2/eval/rpe.hpp"
+#include "litamin2/eval/time_association.hpp"
 #include "litamin2/io/io_error.hpp"
 #include "litamin2/io/trajectory.hpp"
 #include "report.hpp"
@@ -42,8 +44,12 @@ const char* kDescription =
     "litamin2-eval: compare an estimated trajectory with the ground truth.\n"
     "\n"
     "Pose i of --est is compared with pose i of --gt; both files must hold the same number of\n"
-    "poses (TUM files are paired by line, not by timestamp; a warning is printed if the\n"
-    "timestamps of a pair differ by more than 10 ms).\n"
+    "poses (TUM files are paired by line unless --t-max-diff is given; a warning is printed if\n"
+    "the timestamps of a pair differ by more than 10 ms).\n"
+    "With --t-max-diff S (TUM only, as evo's --t_max_diff) each estimate pose is paired with the\n"
+    "ground-truth pose nearest in time, when they are at most S seconds apart; unpaired poses are\n"
+    "left out (their counts are printed) and the metrics below use the paired poses only, e.g. a\n"
+    "keyframe trajectory against full-rate ground truth. Timestamps must be strictly increasing.\n"
     "\n"
     "Reported:\n"
     "  KITTI odometry metric, as evaluate_odometry.cpp of the official KITTI devkit: segments of\n"
@@ -82,6 +88,7 @@ int main(int argc, char** argv) {
   std::string plot_path;
   bool json = false;
   std::size_t rpe_delta = 1;
+  double t_max_diff = -1.0;
   app.add_option("--gt", gt_path, "Ground-truth trajectory file")->required();
   app.add_option("--est", est_path, "Estimated trajectory file")->required();
   app.add_option("--format", format,
@@ -97,6 +104,9 @@ int main(int argc, char** argv) {
   app.add_option("--rpe-delta", rpe_delta, "Frame offset of the RPE pairs")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option("--t-max-diff", t_max_diff,
+                 "Pair TUM poses by timestamp: largest difference in seconds (default: by line)")
+      ->check(CLI::NonNegativeNumber);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -106,6 +116,13 @@ int main(int argc, char** argv) {
   if (!plot_path.empty() && litamin2::eval_tool::plot_format(plot_path).empty()) {
     std::cerr << "litamin2-eval: error: --plot " << plot_path
               << ": unsupported plot format (use a .svg or .png file name)\n";
+    return kExitInputError;
+  }
+
+  const bool pair_by_time = t_max_diff >= 0.0;
+  if (pair_by_time && format != "tum") {
+    std::cerr << "litamin2-eval: error: --t-max-diff needs --format tum (KITTI files hold no "
+                 "timestamps)\n";
     return kExitInputError;
   }
 
@@ -135,13 +152,42 @@ int main(int argc, char** argv) {
     std::cerr << "litamin2-eval: error: ground truth " << gt_path << " holds no poses\n";
     return kExitInputError;
   }
+  if (pair_by_time) {
+    for (const auto& [trajectory, path] : {std::pair{&gt, gt_path}, std::pair{&est, est_path}}) {
+      const std::string error = litamin2::eval::time_series_error(trajectory->times);
+      if (!error.empty()) {
+        std::cerr << "litamin2-eval: error: " << path << ": " << error << '\n';
+        return kExitInputError;
+      }
+    }
+    const auto pairs = litamin2::eval::associate_by_time(gt.times, est.times, t_max_diff);
+    if (pairs.size() < 2) {
+      std::cerr << "litamin2-eval: error: only " << pairs.size() << " of " << est.poses.size()
+                << " estimate poses are within " << t_max_diff << " s of a ground-truth pose\n";
+      return kExitInputError;
+    }
+    Trajectory paired_gt;
+    Trajectory paired_est;
+    for (const auto& p : pairs) {
+      paired_gt.poses.push_back(gt.poses[p.reference_index]);
+      paired_gt.times.push_back(gt.times[p.reference_index]);
+      paired_est.poses.push_back(est.poses[p.query_index]);
+      paired_est.times.push_back(est.times[p.query_index]);
+    }
+    std::cerr << "litamin2-eval: paired " << pairs.size() << " poses by time (<= " << t_max_diff
+              << " s); unpaired: " << est.poses.size() - pairs.size() << " of " << est.poses.size()
+              << " estimate, " << gt.poses.size() - pairs.size() << " of " << gt.poses.size()
+              << " ground truth\n";
+    gt = std::move(paired_gt);
+    est = std::move(paired_est);
+  }
   if (gt.poses.size() != est.poses.size()) {
     std::cerr << "litamin2-eval: error: pose counts differ: estimate " << est_path << " has "
               << est.poses.size() << " poses, ground truth " << gt_path << " has "
               << gt.poses.size() << '\n';
     return kExitInputError;
   }
-  for (std::size_t i = 0; i < gt.times.size() && i < est.times.size(); ++i) {
+  for (std::size_t i = 0; !pair_by_time && i < gt.times.size() && i < est.times.size(); ++i) {
     if (std::abs(gt.times[i] - est.times[i]) > 0.01) {
       std::cerr << "litamin2-eval: warning: timestamps of pose " << i << " differ (" << gt.times[i]
                 << " in " << gt_path << ", " << est.times[i] << " in " << est_path
