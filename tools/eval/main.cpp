@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <iostream>
 #include <string>
@@ -40,6 +41,35 @@ Trajectory read_trajectory(const std::string& path, const std::string& format) {
   return t;
 }
 
+std::string base_name(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+/// The plot of a report: the estimate as the ATE aligned it, titles with the files and numbers.
+litamin2::eval_tool::TrajectoryPlot make_plot(const litamin2::eval_tool::Report& report,
+                                              const Trajectory& gt, const Trajectory& est) {
+  litamin2::eval_tool::TrajectoryPlot plot;
+  plot.ground_truth = gt.poses;
+  for (Eigen::Isometry3d pose : est.poses) {
+    pose.translation() *= report.ate.scale;
+    plot.aligned_estimate.push_back(report.ate.alignment * pose);
+  }
+  if (gt.times.size() == gt.poses.size()) plot.times = gt.times;
+  plot.title = base_name(report.est_path) + " against " + base_name(report.gt_path);
+  char text[256];
+  std::snprintf(text, sizeof text, "ATE (%s-aligned) RMSE %.3f m, max %.3f m over %zu poses",
+                report.alignment.c_str(), report.ate.translation_rmse, report.ate.translation_max,
+                report.poses);
+  plot.subtitle = text;
+  if (report.kitti.valid()) {
+    std::snprintf(text, sizeof text, "; KITTI drift %.3f %% / %.4f deg/100 m",
+                  report.kitti.translation_percent, report.kitti.rotation_deg_per_100m);
+    plot.subtitle += text;
+  }
+  return plot;
+}
+
 const char* kDescription =
     "litamin2-eval: compare an estimated trajectory with the ground truth.\n"
     "\n"
@@ -66,12 +96,13 @@ const char* kDescription =
     "    rotation RMSE in deg.\n";
 
 const char* kFooter =
-    "Plot (--plot): top view of the ground truth (black) and the estimate (red), start marked\n"
-    "green, equal scale on both axes. The two position axes with the largest extent are shown,\n"
-    "the lower-numbered one to the right and the other one upwards: x-z for KITTI camera-0 poses\n"
-    "(x right, z forward), x-y for z-up poses. .svg: SVG with legend, axis names and a scale bar;\n"
-    ".png: PNG (libpng) with a scale bar at the bottom left and a legend without text (top left:\n"
-    "black bar = ground truth, red bar = estimate).\n"
+    "Plot (--plot FILE.png|svg|pdf, drawn with Cairo): title with the files, the ATE and the\n"
+    "KITTI drift; a top view of the ground truth (dashed black) and the estimate as the ATE\n"
+    "aligned it, coloured by its position error (colour bar in metres), start marked green, equal\n"
+    "scale on both axes with metre ticks. The two position axes with the largest extent are "
+    "shown:\n"
+    "x-z for KITTI camera-0 poses (x right, z forward), x-y for z-up poses. Below: the position\n"
+    "error over time (TUM) or pose index (KITTI).\n"
     "\n"
     "Exit codes: 0 success; 2 bad command line, missing/unreadable/malformed file, different pose\n"
     "counts, empty file or plot that cannot be written.";
@@ -97,7 +128,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"kitti", "tum"}))
       ->capture_default_str();
   app.add_flag("--json", json, "Print one JSON object instead of the table");
-  app.add_option("--plot", plot_path, "Write a top-view plot; FILE.svg or FILE.png");
+  app.add_option("--plot", plot_path, "Write a plot: FILE.png, FILE.svg or FILE.pdf");
   app.add_option("--align", align, "Alignment before the ATE: se3, sim3 or none")
       ->check(CLI::IsMember({"se3", "sim3", "none"}))
       ->capture_default_str();
@@ -115,7 +146,7 @@ int main(int argc, char** argv) {
 
   if (!plot_path.empty() && litamin2::eval_tool::plot_format(plot_path).empty()) {
     std::cerr << "litamin2-eval: error: --plot " << plot_path
-              << ": unsupported plot format (use a .svg or .png file name)\n";
+              << ": unsupported plot format (use a .png, .svg or .pdf file name)\n";
     return kExitInputError;
   }
 
@@ -219,7 +250,7 @@ int main(int argc, char** argv) {
 
   if (!plot_path.empty()) {
     try {
-      litamin2::eval_tool::write_trajectory_plot(plot_path, gt.poses, est.poses);
+      litamin2::eval_tool::write_trajectory_plot(plot_path, make_plot(report, gt, est));
     } catch (const std::exception& e) {
       std::cerr << "litamin2-eval: error: cannot write plot: " << e.what() << '\n';
       return kExitInputError;
