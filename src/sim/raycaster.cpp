@@ -35,6 +35,34 @@ struct Tile {
   std::uint64_t last_used = 0;
 };
 
+/// A new Embree triangle geometry holding `mesh`, one time step per pose in `poses` (vertices
+/// moved by the pose; none = one step with the vertices as they are). Committed; the caller
+/// owns the reference.
+RTCGeometry new_mesh_geometry(RTCDevice device, const TriangleMesh& mesh,
+                              const std::vector<Eigen::Isometry3f>& poses = {}) {
+  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  const unsigned steps = poses.empty() ? 1u : static_cast<unsigned>(poses.size());
+  if (steps > 1) rtcSetGeometryTimeStepCount(g, steps);
+  for (unsigned step = 0; step < steps; ++step) {
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, step,
+                                                          RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                          mesh.vertices.size()));
+    for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+      const Eigen::Vector3f w = poses.empty() ? mesh.vertices[i] : poses[step] * mesh.vertices[i];
+      v[3 * i] = w.x();
+      v[3 * i + 1] = w.y();
+      v[3 * i + 2] = w.z();
+    }
+  }
+  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangles.size()));
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    for (int k = 0; k < 3; ++k) idx[3 * i + k] = mesh.triangles[i][k];
+  }
+  rtcCommitGeometry(g);
+  return g;
+}
+
 }  // namespace
 
 struct Raycaster::Impl {
@@ -78,22 +106,7 @@ struct Raycaster::Impl {
       rtcSetSceneBuildQuality(t.scene, RTC_BUILD_QUALITY_MEDIUM);
     }
     if (!mesh.empty()) {
-      RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                            RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                            mesh.vertices.size()));
-      for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
-        v[3 * i] = mesh.vertices[i].x();
-        v[3 * i + 1] = mesh.vertices[i].y();
-        v[3 * i + 2] = mesh.vertices[i].z();
-      }
-      auto* idx = static_cast<unsigned*>(
-          rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                  3 * sizeof(unsigned), mesh.triangles.size()));
-      for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-        for (int k = 0; k < 3; ++k) idx[3 * i + k] = mesh.triangles[i][k];
-      }
-      rtcCommitGeometry(g);
+      RTCGeometry g = new_mesh_geometry(device, mesh);
       if (opt.instancing) {
         rtcAttachGeometryByID(t.scene, g, 0);
         rtcReleaseGeometry(g);
@@ -266,31 +279,12 @@ struct DynamicScene {
     const auto actors = traffic.near(position, radius, t0);
     if (actors.empty()) return;
     scene = rtcNewScene(device);
-    const unsigned steps = motion ? 2u : 1u;
     for (std::size_t actor : actors) {
       const TriangleMesh& mesh = traffic.mesh(actor);
       if (mesh.empty()) continue;
-      RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-      rtcSetGeometryTimeStepCount(g, steps);
-      for (unsigned step = 0; step < steps; ++step) {
-        const Eigen::Isometry3f pose = traffic.pose(actor, step == 0 ? t0 : t1).cast<float>();
-        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, step,
-                                                              RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                              mesh.vertices.size()));
-        for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
-          const Eigen::Vector3f w = pose * mesh.vertices[i];
-          v[3 * i] = w.x();
-          v[3 * i + 1] = w.y();
-          v[3 * i + 2] = w.z();
-        }
-      }
-      auto* idx = static_cast<unsigned*>(
-          rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                  3 * sizeof(unsigned), mesh.triangles.size()));
-      for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-        for (int k = 0; k < 3; ++k) idx[3 * i + k] = mesh.triangles[i][k];
-      }
-      rtcCommitGeometry(g);
+      std::vector<Eigen::Isometry3f> poses{traffic.pose(actor, t0).cast<float>()};
+      if (motion) poses.push_back(traffic.pose(actor, t1).cast<float>());
+      RTCGeometry g = new_mesh_geometry(device, mesh, poses);
       const unsigned id = rtcAttachGeometry(scene, g);
       rtcReleaseGeometry(g);
       if (meshes.size() <= id) meshes.resize(id + 1, nullptr);

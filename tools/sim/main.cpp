@@ -223,7 +223,7 @@ int main(int argc, char** argv) {
                  "Amplitude of short (2-5 m) ground bumps on the road, m (twice that off it)")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--grass-height", grass_height,
-                 "Grass blade height, m: returns come from within the blades")
+                 "Grass blade height, m: returns come from near the blade tops")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--foliage-depth", foliage_depth,
                  "Mean depth a beam travels into foliage before returning, m")
