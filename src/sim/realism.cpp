@@ -1,5 +1,6 @@
 #include "litamin2/sim/realism.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace litamin2::sim {
@@ -12,6 +13,8 @@ void apply_realism(const std::string& name, RealismSettings& s) {
   // The real VLP-16 drive's ranges are smoother than the preset's 3 cm (robust 0.8 cm along a
   // ground ring, 1 cm rounding included); its roughness comes from the surfaces instead.
   if (s.model.name == "vlp16") s.model.range_noise_sigma = 0.01;
+  // Returns from 1 m on (the HDL-64 preset's 2.5 m would hide the self-hits).
+  s.model.min_range = std::min(s.model.min_range, 1.0);
   // Sweep as Velodyne drivers cut it: starting behind the car, turning clockwise, with the
   // vehicle moving during the 100 ms.
   s.rig.sweep.motion = true;

@@ -32,11 +32,11 @@ struct RealismSettings {
 /// Applies preset `name` to `settings` (its model is the sensor chosen; some values depend on
 /// it). "none": no change. "street": the real VLP-16 drive's traits (see docs/simulator.md):
 /// sweep motion starting behind the car and turning clockwise, the roof-rack body, mount roll
-/// 1 deg, range noise 1 cm for the VLP-16 (as measured on that drive), short ground bumps
-/// (5 cm), grass 12 cm high, foliage penetration 0.25 m, a 15 cm kerb, greener districts
-/// (urban 0.2, suburban 0.4, green 0.4) with twice the object density, a lead car, 8 oncoming
-/// cars and 30 pedestrians per km, half the frames dropped (runs of up to 3). Throws
-/// std::invalid_argument for an unknown name.
+/// 1 deg, returns from 1 m, range noise 1 cm for the VLP-16 (as measured on that drive), short
+/// ground bumps (5 cm), grass 12 cm high, foliage penetration 0.25 m, a 15 cm kerb, greener
+/// districts (urban 0.2, suburban 0.4, green 0.4) with twice the object density, a lead car,
+/// 8 oncoming cars and 30 pedestrians per km, half the frames dropped (runs of up to 3).
+/// Throws std::invalid_argument for an unknown name.
 void apply_realism(const std::string& name, RealismSettings& settings);
 
 /// Names accepted by apply_realism.
