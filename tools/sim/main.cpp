@@ -201,7 +201,8 @@ int main(int argc, char** argv) {
          "behind the sensor)")
       ->check(CLI::IsMember(sim::EgoBody::preset_names()));
   app.add_option("--mount-tilt", mount_tilt,
-                 "Sensor mount rotation ROLL,PITCH in degrees (e.g. -1,0.7)");
+                 "Sensor mount rotation ROLL,PITCH in degrees (e.g. 1,0; a negative roll as "
+                 "--mount-tilt=-1,0.5)");
   app.add_option("--drop-frames", drop_frames,
                  "Probability that a frame is dropped (irregular spacing between files)")
       ->check(CLI::Range(0.0, 0.95));

@@ -42,7 +42,8 @@ struct TrafficOptions {
 class Traffic {
  public:
   /// Actors along `ego_path` (vehicle poses in the world frame, one every `period` seconds
-  /// from time 0). The world gives the ground height and the districts. Throws
+  /// from time 0). The world gives the ground height and the districts and must outlive the
+  /// Traffic. Throws
   /// std::invalid_argument for invalid options, an empty path or a period <= 0.
   Traffic(const std::vector<Eigen::Isometry3d>& ego_path, double period, const World& world,
           std::uint64_t seed, const TrafficOptions& options);
