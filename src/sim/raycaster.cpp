@@ -341,20 +341,20 @@ SimulatedScan Raycaster::scan(const SweepRequest& request, const LidarModel& mod
     cos_az[a] = static_cast<float>(std::cos(az));
     sin_az[a] = static_cast<float>(std::sin(az));
   }
-  // Sensor pose of each column (one for all without motion): world rotation and origin, and
-  // the transform from the column's sensor frame to the sweep-start sensor frame.
+  // Sensor pose of each column (one for all without motion): world rotation and origin. A
+  // point stays in the sensor frame of its own firing, as LiDAR drivers publish them (not
+  // motion-compensated), so a sweep with motion is distorted until it is deskewed with the
+  // points' times.
   const Eigen::Isometry3d reference = tilted ? request.start * mount : request.start;
   const std::size_t n_poses = motion ? static_cast<std::size_t>(steps) : 1;
   std::vector<Eigen::Matrix3f> col_R(n_poses);
   std::vector<Eigen::Vector3f> col_origin(n_poses);
-  std::vector<Eigen::Isometry3d> col_to_ref(n_poses, Eigen::Isometry3d::Identity());
   for (std::size_t a = 0; a < n_poses; ++a) {
     Eigen::Isometry3d sensor = reference;
     if (motion) {
       const Eigen::Isometry3d vehicle =
           interpolate_pose(request.start, request.end, static_cast<double>(a) / steps);
       sensor = tilted ? vehicle * mount : vehicle;
-      col_to_ref[a] = reference.inverse() * sensor;
     }
     col_R[a] = sensor.linear().cast<float>();
     col_origin[a] = sensor.translation().cast<float>();
@@ -392,10 +392,11 @@ SimulatedScan Raycaster::scan(const SweepRequest& request, const LidarModel& mod
     return t0 <= t1;
   };
   const float max_range = static_cast<float>(model.max_range);
-  // Turns one hit at distance t into a point (or no return) in slot k of column a; `n` is the
-  // surface normal and `d` the ray direction in one frame, for the incidence angle.
-  auto shade = [&](std::size_t k, int a, const Eigen::Vector3f& ds, const Eigen::Vector3f& d,
-                   float t, Eigen::Vector3f n, Material material, float reflectivity) {
+  // Turns one hit at distance t into a point (or no return) in slot k, in the sensor frame of
+  // the hit's column (`ds` the ray there); `n` is the surface normal and `d` the ray direction in
+  // one frame, for the incidence angle.
+  auto shade = [&](std::size_t k, const Eigen::Vector3f& ds, const Eigen::Vector3f& d, float t,
+                   Eigen::Vector3f n, Material material, float reflectivity) {
     Eigen::Vector4f& out = slots[k];
     const float len = n.norm();
     n = len > 0 ? Eigen::Vector3f(n / len) : Eigen::Vector3f::UnitZ();
@@ -420,12 +421,7 @@ SimulatedScan Raycaster::scan(const SweepRequest& request, const LidarModel& mod
     if (range < model.min_range || range > model.max_range) return;
     const double intensity =
         std::clamp(refl * (0.35 + 0.65 * cos_inc) + 0.02 * rng.normal(), 0.0, 1.0);
-    if (motion) {
-      const Eigen::Vector3d p = col_to_ref[a] * (ds.cast<double>() * range);
-      out << p.cast<float>(), static_cast<float>(intensity);
-    } else {
-      out << ds * static_cast<float>(range), static_cast<float>(intensity);
-    }
+    out << ds * static_cast<float>(range), static_cast<float>(intensity);
   };
   auto cast_block = [&](const tbb::blocked_range<int>& r) {
     RTCIntersectContext ctx;
@@ -489,17 +485,17 @@ SimulatedScan Raycaster::scan(const SweepRequest& request, const LidarModel& mod
             const unsigned id = rh.hit.geomID[i], p = rh.hit.primID[i];
             const TriangleMesh* mesh = id < dynamic->meshes.size() ? dynamic->meshes[id] : nullptr;
             if (!mesh || p >= mesh->materials.size()) continue;
-            shade(k, a, ds[i], dw[i], rh.ray.tfar[i],
+            shade(k, ds[i], dw[i], rh.ray.tfar[i],
                   Eigen::Vector3f(rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]),
                   mesh->materials[p], mesh->reflectivity[p]);
           } else if (geom[i] != RTC_INVALID_GEOMETRY_ID) {
             const unsigned id = impl.opt.instancing ? inst[i] : geom[i];
             const Tile* tile = id < impl.by_instance.size() ? impl.by_instance[id] : nullptr;
             if (!tile || prim[i] >= tile->materials.size()) continue;
-            shade(k, a, ds[i], dw[i], tfar[i], ng[i], tile->materials[prim[i]],
+            shade(k, ds[i], dw[i], tfar[i], ng[i], tile->materials[prim[i]],
                   tile->reflectivity[prim[i]]);
           } else if (body[i]) {
-            shade(k, a, ds[i], dv[i], static_cast<float>(body[i]->range),
+            shade(k, ds[i], dv[i], static_cast<float>(body[i]->range),
                   body[i]->normal.cast<float>(), Material::kCarPaint, body[i]->reflectivity);
           }
         }

@@ -71,7 +71,8 @@ TEST(SimSweep, ColumnAzimuthAndTime) {
 }
 
 // Each point of a sweep with motion is where a static scan from the pose at the point's time
-// puts it (same column, beam and noise), carried into the frame of the sweep start.
+// puts it (same column, beam and noise), in the sensor frame of that time: raw, as drivers
+// publish it. Carried into the sweep-start frame (what a deskew does) it moves by the motion.
 TEST(SimSweep, EachPointIsCastFromThePoseAtItsTime) {
   const auto path = sim::builtin_trajectory("loop");
   const sim::World world(path, 3);
@@ -115,17 +116,27 @@ TEST(SimSweep, EachPointIsCastFromThePoseAtItsTime) {
       if (sweep.times[i] != t) continue;
       const auto it = expected.find(sweep.rings[i]);
       ASSERT_NE(it, expected.end()) << "column " << column << " ring " << sweep.rings[i];
-      const Eigen::Vector3d want = to_start * it->second.cast<double>();
-      EXPECT_LT((sweep.cloud.points[i].cast<double>() - want).norm(), 2e-3)
+      const Eigen::Vector3d raw = sweep.cloud.points[i].cast<double>();
+      EXPECT_LT((raw - it->second.cast<double>()).norm(), 2e-3)
           << "column " << column << " ring " << sweep.rings[i];
+      // Deskewed, the point moves by the sensor's motion up to its time: not at all in the
+      // first column, more than a metre in the last (1.5 m and 4 deg within the sweep).
+      const double moved = (to_start * raw - raw).norm();
+      if (column == 0) {
+        EXPECT_LT(moved, 1e-9);
+      }
+      if (column == 1799) {
+        EXPECT_GT(moved, 1.0);
+      }
       ++compared;
     }
   }
   EXPECT_GT(compared, 40);
 }
 
-// Without motion the same columns are cast from one pose: a moving sweep of a flat ground
-// differs from the static one by the motion (points seen late are displaced).
+// A moving sweep of a flat ground: each raw point is a ray of its column from the sensor at
+// its time, so its azimuth in the sensor frame is the column's, however far the sensor moved;
+// carried into the sweep-start frame it is displaced by the motion up to its time.
 TEST(SimSweep, MotionShiftsLateColumns) {
   std::vector<Eigen::Isometry3d> path;
   for (int i = 0; i < 400; ++i) path.push_back(pose(i - 200.0, 0, 0));
@@ -138,17 +149,21 @@ TEST(SimSweep, MotionShiftsLateColumns) {
   request.start = path[200];
   request.end = path[200] * pose(2.0, 0, 0);  // 20 m/s
   const auto sweep = rc.scan(request, model, rig, 1);
-  // Each ground point, minus the sensor's offset at its time, is a ray of the column at that
-  // time: its azimuth is the column's.
   int checked = 0;
   for (std::size_t i = 0; i < sweep.cloud.size(); i += 97) {
     const double s = sweep.times[i] / rig.sweep.duration;
-    const Eigen::Vector3d ray =
-        sweep.cloud.points[i].cast<double>() - Eigen::Vector3d(2.0 * s, 0, 0);
+    const Eigen::Vector3d ray = sweep.cloud.points[i].cast<double>();
     double az = std::atan2(ray.y(), ray.x());
     if (az < 0) az += 2 * M_PI;
     const double expected = 2.0 * M_PI * s;
     EXPECT_NEAR(std::remainder(az - expected, 2 * M_PI), 0.0, 2e-3) << i;
+    // Deskewed (sensor offset 2 m * s along x at that time) the point is off its column's ray
+    // through the sweep-start origin by 2 m * s * |sin(azimuth)|: the distortion a deskew
+    // removes.
+    const double off_ray = [&](const Eigen::Vector3d& p) {
+      return std::abs(p.x() * std::sin(expected) - p.y() * std::cos(expected));
+    }(ray + Eigen::Vector3d(2.0 * s, 0, 0));
+    EXPECT_NEAR(off_ray, 2.0 * s * std::abs(std::sin(expected)), 0.02) << i;
     ++checked;
   }
   EXPECT_GT(checked, 50);

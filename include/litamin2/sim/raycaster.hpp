@@ -84,8 +84,10 @@ class Raycaster {
 
   /// Simulates one revolution of `model` installed as `rig`: columns at the rig's azimuths,
   /// each cast from its own pose when the sweep has motion; the rig's body returns self-hits;
-  /// the request's traffic is cast at each column's time. Points are in the sensor frame at the
-  /// sweep start (request.start times the mount rotation), with their firing times and rings;
+  /// the request's traffic is cast at each column's time. Each point is in the sensor frame of its
+  /// own firing (raw, as LiDAR drivers publish them: with motion the sweep is distorted, and a
+  /// deskew with the firing times carries it into the frame at the sweep start, request.start
+  /// times the mount rotation), with its firing time and ring;
   /// ordered by firing time (column by column, top beam first) when the sweep has motion or a
   /// non-default start/direction, else as scan(pose, ...) orders them. With a default rig and
   /// start == end the points are exactly those of scan(request.start, model, scan_seed).

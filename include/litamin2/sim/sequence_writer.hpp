@@ -64,12 +64,12 @@ struct SequenceWriteResult {
 ///
 /// Frame i's sweep starts at time i * frame_period, at pose i, and lasts the rig's sweep
 /// duration; with sweep motion it is cast along the poses interpolated in SE(3)
-/// (ContinuousTrajectory; the last sweep extrapolates at constant velocity) and its points are
-/// in the sensor frame at the sweep start. The ground truth of a frame is the pose at its sweep
-/// start, as drivers stamp a scan's header with the sweep start. With a tilted mount, calib.txt
-/// holds Tr * M (M the mount rotation: sensor to vehicle), so Tr' * S0^-1 * Si * Tr'^-1 of the
-/// tilted sensor poses Si = Vi * M is the same ground truth. With `frames`, times.txt holds the
-/// kept frames' times (from the first kept one) and `dir/source_frames.txt` the index of the
+/// (ContinuousTrajectory; the last sweep extrapolates at constant velocity) and each point is in
+/// the sensor frame of its firing (raw, not deskewed). The ground truth of a frame is the pose at
+/// its sweep start, as drivers stamp a scan's header with the sweep start. With a tilted mount,
+/// calib.txt holds Tr * M (M the mount rotation: sensor to vehicle), so Tr' * S0^-1 * Si * Tr'^-1
+/// of the tilted sensor poses Si = Vi * M is the same ground truth. With `frames`, times.txt holds
+/// the kept frames' times (from the first kept one) and `dir/source_frames.txt` the index of the
 /// pose each file was simulated at. Throws io::IoError if a file cannot be written,
 /// std::invalid_argument for no poses, bad frame indices or an invalid rig.
 SequenceWriteResult write_sequence(const std::string& dir, Raycaster& raycaster,

@@ -8,8 +8,8 @@
 
 namespace litamin2::sim {
 
-/// Points of one sweep in the sensor frame at the sweep start, with intensities, and for each
-/// point its firing time and ring.
+/// Points of one sweep, each in the sensor frame at its firing (raw, as drivers publish them),
+/// with intensities, and for each point its firing time and ring.
 struct SimulatedScan {
   /// Points and intensities in [0, 1].
   PointCloud cloud;
