@@ -184,9 +184,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(sim::realism_names()));
   auto* motion_on = app.add_flag(
       "--sweep-motion", sweep_motion_on,
-      "Cast each firing from its own pose within the 100 ms sweep (points in the frame of the "
-      "sweep start, ground truth at the sweep start) and write DIR/pcd/*.pcd with a per-point "
-      "time t (s from the sweep start) and ring");
+      "Cast each firing from its own pose within the 100 ms sweep (each point in the sensor "
+      "frame of its firing, not deskewed, as drivers publish them; ground truth at the sweep "
+      "start) and write DIR/pcd/*.pcd with a per-point time t (s from the sweep start) and ring");
   app.add_flag("--no-sweep-motion", sweep_motion_off, "One pose per sweep (overrides --realism)")
       ->excludes(motion_on);
   app.add_option("--sweep-start", sweep_start,

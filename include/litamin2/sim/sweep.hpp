@@ -8,8 +8,8 @@ namespace litamin2::sim {
 /// Revolution timing. With the defaults (start 0 deg, counter-clockwise, no motion) columns
 /// are cast as the simulator always did: azimuth 2 pi k / steps for column k, one pose.
 struct SweepOptions {
-  /// Each firing is cast from the pose at its own time (motion within the sweep); the scan's
-  /// points are expressed in the sensor frame at the sweep start.
+  /// Each firing is cast from the pose at its own time (motion within the sweep); each point
+  /// stays in the sensor frame of its firing (raw, as drivers publish them; not deskewed).
   bool motion = false;
   /// Duration of one revolution, seconds (10 Hz: 0.1).
   double duration = 0.1;
