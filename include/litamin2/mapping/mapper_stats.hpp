@@ -1,0 +1,37 @@
+#pragma once
+/// What the mapper counts and how long its stages take.
+
+#include <cstddef>
+
+namespace litamin2::mapping {
+
+struct MapperStats {
+  std::size_t keyframes = 0;
+  std::size_t streams = 0;
+  std::size_t duplicates = 0;
+  std::size_t candidates = 0;
+  std::size_t verified = 0;
+  /// Candidates rejected by verification or, after optimisation, as inconsistent.
+  std::size_t rejected = 0;
+  /// Of those, verified loops the graph could not accommodate.
+  std::size_t inconsistent = 0;
+  std::size_t optimizations = 0;
+};
+
+/// CPU time (of the calling thread) spent in the mapper's stages since construction, seconds.
+struct MapperCpu {
+  /// Place descriptors of new keyframes.
+  double descriptor_s = 0.0;
+  /// Insertion into the keyframe chain: initial pose, path lengths.
+  double chain_s = 0.0;
+  /// Proximity candidate search (nearest keyframe by pose estimate).
+  double proximity_s = 0.0;
+  /// Descriptor candidate search (ring-key shortlist and full descriptor distances).
+  double descriptor_search_s = 0.0;
+  /// Loop verification (candidate submap and registration).
+  double verification_s = 0.0;
+  /// Pose-graph optimisation.
+  double optimize_s = 0.0;
+};
+
+}  // namespace litamin2::mapping
