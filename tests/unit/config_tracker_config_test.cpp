@@ -30,6 +30,8 @@ TEST(TrackerConfigYaml, EmptyDocumentGivesDefaults) {
 TEST(TrackerConfigYaml, ShippedFileIsTheDefaults) {
   const TrackerConfig shipped = load_tracker_config(LITAMIN2_SOURCE_DIR "/config/tracker.yaml");
   EXPECT_EQ(tracker_config_to_yaml(shipped), tracker_config_to_yaml(TrackerConfig{}));
+  // The keys a sensor preset sets are left to the preset (a key given in a file wins over it).
+  EXPECT_TRUE(shipped.explicit_keys.empty());
 }
 
 TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
