@@ -157,6 +157,8 @@ int main(int argc, char** argv) {
     spdlog::error("{}", e.what());
     exit_code = 1;
   }
+  // Fast DDS's log thread must not deliver to spdlog once static destruction begins.
+  litamin2::dds::stop_fastdds_log();
   spdlog::default_logger()->flush();
   return exit_code;
 }

@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
       // A frame is wedged: do not hang on it, systemd would have to kill us.
       spdlog::error("{} frame(s) still in processing at the deadline; exiting without them",
                     drained.in_flight);
-      spdlog::default_logger()->flush();
+      litamin2::dds::stop_fastdds_log();
       std::_Exit(1);
     }
   } catch (const ConfigError& e) {
@@ -110,6 +110,8 @@ int main(int argc, char** argv) {
     spdlog::error("{}", e.what());
     exit_code = 1;
   }
+  // Fast DDS's log thread must not deliver to spdlog once static destruction begins.
+  litamin2::dds::stop_fastdds_log();
   spdlog::default_logger()->flush();
   return exit_code;
 }

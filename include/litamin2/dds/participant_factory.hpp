@@ -69,7 +69,15 @@ ParticipantPtr create_participant(
 
 /// Replaces Fast DDS's console log consumers by one forwarding every entry to spdlog's default
 /// logger (Error -> error, Warning -> warn, Info -> debug; logger name "fastdds" in the
-/// message), and sets Fast DDS's verbosity to Warning. Idempotent and thread-safe.
+/// message), and sets Fast DDS's verbosity to Warning. Registers stop_fastdds_log with
+/// std::atexit, so that it runs before spdlog's registry is destroyed in every process and test
+/// that forwards. Idempotent and thread-safe; does nothing after stop_fastdds_log.
 void forward_fastdds_log_to_spdlog();
+
+/// Delivers the queued Fast DDS log entries to spdlog, then detaches spdlog (later entries go to
+/// stderr) and stops Fast DDS's log thread: Fast DDS's log thread must never deliver to spdlog
+/// once static destruction has begun. Mains call it before returning; it also runs at exit.
+/// Idempotent and thread-safe.
+void stop_fastdds_log();
 
 }  // namespace litamin2::dds
