@@ -79,6 +79,12 @@ TEST(AggregatorConfig, ErrorsNameTheKey) {
   expect_error("colour: red", "colour: unknown key");
 }
 
+TEST(AggregatorConfig, AMappingAsAKeyAndInfinityAreConfigErrors) {
+  // Regression (issue 14): litamin2-aggregator --check-config died with SIGABRT on this.
+  expect_error("? {voxel_size: 3}\n", "config: a key must be a name");
+  expect_error("mapper: {map_voxel_size: .inf}", "mapper.map_voxel_size: '.inf' is not a finite");
+}
+
 TEST(AggregatorConfig, FileErrorsNameTheFile) {
   try {
     load_aggregator_config("/nonexistent/agg.yaml");
