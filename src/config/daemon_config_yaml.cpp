@@ -117,6 +117,11 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
   YamlSection root(node, "");
 
   config.dds = service::transport_config_from_yaml(root.child("dds"));
+  {
+    YamlSection limits(root.child("limits"), "limits");
+    limits.read_range("max_points_per_scan", config.limits.max_points_per_scan, 1, 100'000'000);
+    limits.reject_unknown();
+  }
 
   // tracker (global); kept as YAML so streams can override single keys.
   const YAML::Node tracker_node = root.child("tracker");

@@ -186,6 +186,16 @@ TEST(DaemonConfig, AMappingAsAKeyIsAConfigErrorEverywhere) {
             "streams[0].tracker: a key must be a name, got '[x]'");
 }
 
+TEST(DaemonConfig, Limits) {
+  const DaemonConfig defaults = parse("discovery: {enabled: true}");
+  EXPECT_EQ(defaults.limits.max_points_per_scan, 5'000'000);
+  EXPECT_EQ(parse("discovery: {enabled: true}\nlimits: {max_points_per_scan: 1000}")
+                .limits.max_points_per_scan,
+            1000);
+  EXPECT_EQ(error_of("discovery: {enabled: true}\nlimits: {max_points_per_scan: 0}"),
+            "limits.max_points_per_scan: 0 is out of range [1, 100000000]");
+}
+
 TEST(DaemonConfig, FileErrorsStartWithTheFileName) {
   const std::string path = ::testing::TempDir() + "/daemon_config_test_bad.yaml";
   std::ofstream(path) << "discovery: {enabled: true}\nqueue_depth: -3\n";

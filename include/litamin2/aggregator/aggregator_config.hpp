@@ -55,8 +55,16 @@ struct PublishConfig {
   double status_period_s = 1.0;
 };
 
+/// Bounds on what a client may send (docs/security.md, "Validation").
+struct LimitsConfig {
+  /// A map patch with more distributions is rejected (too_many_distributions) before any is
+  /// converted; its serialised payload may be at most 40 bytes a distribution plus 1 MiB.
+  int max_distributions_per_patch = 200'000;
+};
+
 struct AggregatorConfig {
   service::TransportConfig dds;
+  LimitsConfig limits;
   TopicsConfig topics;
   StoreConfig store;
   IngestConfig ingest;

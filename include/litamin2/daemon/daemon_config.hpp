@@ -50,8 +50,16 @@ struct OutputsConfig {
   std::string odom_frame = "odom";
 };
 
+/// Bounds on what a client may send (docs/security.md, "Validation").
+struct LimitsConfig {
+  /// A PointCloud2 with more points (width * height) is rejected (too_many_points) before any
+  /// point is read.
+  int max_points_per_scan = 5'000'000;
+};
+
 struct DaemonConfig {
   service::TransportConfig dds;
+  LimitsConfig limits;
   /// Statically configured streams.
   std::vector<StreamConfig> streams;
   DiscoveryConfig discovery;
