@@ -117,6 +117,7 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
   YamlSection root(node, "");
 
   config.dds = service::transport_config_from_yaml(root.child("dds"));
+  config.security = service::security_config_from_yaml(root.child("security"));
   {
     YamlSection limits(root.child("limits"), "limits");
     limits.read_range("max_points_per_scan", config.limits.max_points_per_scan, 1, 100'000'000);

@@ -36,6 +36,21 @@ TransportConfig transport_config_from_yaml(const YAML::Node& node) {
   return config;
 }
 
+SecurityConfig security_config_from_yaml(const YAML::Node& node) {
+  SecurityConfig config;
+  YamlSection security(node, "security");
+  security.read("enabled", config.enabled);
+  security.read("identity_ca", config.identity_ca);
+  security.read("certificate", config.certificate);
+  security.read("private_key", config.private_key);
+  security.read("permissions_ca", config.permissions_ca);
+  security.read("governance", config.governance);
+  security.read("permissions", config.permissions);
+  security.reject_unknown();
+  if (const auto why = security_config_error(config)) throw ConfigError(*why);
+  return config;
+}
+
 WatchdogConfig watchdog_config_from_yaml(const YAML::Node& node, double max_stall_timeout_s) {
   WatchdogConfig config;
   YamlSection watchdog(node, "watchdog");

@@ -79,12 +79,13 @@ TEST(AggregatorConfig, ErrorsNameTheKey) {
   expect_error("colour: red", "colour: unknown key");
 }
 
-TEST(AggregatorConfig, Limits) {
+TEST(AggregatorConfig, LimitsAndSecurity) {
   EXPECT_EQ(aggregator_config_from_yaml(YAML::Node()).limits.max_distributions_per_patch, 200'000);
   EXPECT_EQ(aggregator_config_from_yaml(YAML::Load("limits: {max_distributions_per_patch: 7}"))
                 .limits.max_distributions_per_patch,
             7);
   expect_error("limits: {max_distributions_per_patch: 0}", "limits.max_distributions_per_patch");
+  expect_error("security: {enabled: true}", "security.identity_ca: required");
 }
 
 TEST(AggregatorConfig, AMappingAsAKeyAndInfinityAreConfigErrors) {

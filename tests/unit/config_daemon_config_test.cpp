@@ -186,14 +186,22 @@ TEST(DaemonConfig, AMappingAsAKeyIsAConfigErrorEverywhere) {
             "streams[0].tracker: a key must be a name, got '[x]'");
 }
 
-TEST(DaemonConfig, Limits) {
+TEST(DaemonConfig, LimitsAndSecurity) {
   const DaemonConfig defaults = parse("discovery: {enabled: true}");
   EXPECT_EQ(defaults.limits.max_points_per_scan, 5'000'000);
+  EXPECT_FALSE(defaults.security.enabled);
   EXPECT_EQ(parse("discovery: {enabled: true}\nlimits: {max_points_per_scan: 1000}")
                 .limits.max_points_per_scan,
             1000);
   EXPECT_EQ(error_of("discovery: {enabled: true}\nlimits: {max_points_per_scan: 0}"),
             "limits.max_points_per_scan: 0 is out of range [1, 100000000]");
+  EXPECT_EQ(error_of("discovery: {enabled: true}\nsecurity: {enabled: true}"),
+            "security.identity_ca: required when security.enabled is true");
+  EXPECT_EQ(
+      error_of("discovery: {enabled: true}\nsecurity: {enabled: true, identity_ca: /no/ca.pem}"),
+      "security.identity_ca: cannot open '/no/ca.pem'");
+  EXPECT_EQ(error_of("discovery: {enabled: true}\nsecurity: {certificat: x}"),
+            "security.certificat: unknown key");
 }
 
 TEST(DaemonConfig, FileErrorsStartWithTheFileName) {

@@ -8,6 +8,7 @@
 #include "litamin2/aggregator/map_export.hpp"
 #include "litamin2/config/aggregator_config_yaml.hpp"
 #include "litamin2/core/config_error.hpp"
+#include "litamin2/dds/security_files.hpp"
 #include "litamin2/io/io_error.hpp"
 #include "litamin2/mapping/mapper_config.hpp"
 #include "litamin2/service/logging.hpp"
@@ -115,6 +116,13 @@ int main(int argc, char** argv) {
     config = load_aggregator_config(config_file);
   } catch (const ConfigError& e) {
     std::fprintf(stderr, "<3>error: invalid configuration: %s\n", e.what());
+    return 2;
+  }
+  // The security files' contents (certificates, signatures, expiry, grants), here too so that
+  // --check-config reports them.
+  if (const auto why = litamin2::dds::security_files_error(config.security, config.dds.domain)) {
+    std::fprintf(stderr, "<3>error: invalid configuration: %s: %s\n", config_file.c_str(),
+                 why->c_str());
     return 2;
   }
   service::setup_logging(config.log_level);

@@ -6,6 +6,7 @@
 #include "litamin2/config/daemon_config_yaml.hpp"
 #include "litamin2/core/config_error.hpp"
 #include "litamin2/daemon/dds/daemon_node.hpp"
+#include "litamin2/dds/security_files.hpp"
 #include "litamin2/service/logging.hpp"
 #include "litamin2/service/service_loop.hpp"
 #include "litamin2/version.hpp"
@@ -63,6 +64,13 @@ int main(int argc, char** argv) {
     config = load_daemon_config(config_file);
   } catch (const ConfigError& e) {
     std::fprintf(stderr, "<3>error: invalid configuration: %s\n", e.what());
+    return 2;
+  }
+  // The security files' contents (certificates, signatures, expiry, grants), here too so that
+  // --check-config reports them.
+  if (const auto why = litamin2::dds::security_files_error(config.security, config.dds.domain)) {
+    std::fprintf(stderr, "<3>error: invalid configuration: %s: %s\n", config_file.c_str(),
+                 why->c_str());
     return 2;
   }
   service::setup_logging(config.log_level);

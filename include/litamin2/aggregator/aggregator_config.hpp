@@ -4,6 +4,7 @@
 /// validation (read from YAML by config/aggregator_config_yaml.hpp).
 
 #include "litamin2/mapping/mapper_config.hpp"
+#include "litamin2/service/security_config.hpp"
 #include "litamin2/service/transport_config.hpp"
 #include "litamin2/service/watchdog_config.hpp"
 
@@ -64,6 +65,8 @@ struct LimitsConfig {
 
 struct AggregatorConfig {
   service::TransportConfig dds;
+  /// DDS-Security (off by default).
+  service::SecurityConfig security;
   LimitsConfig limits;
   TopicsConfig topics;
   StoreConfig store;

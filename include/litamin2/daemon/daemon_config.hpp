@@ -4,6 +4,7 @@
 /// YAML by config/daemon_config_yaml.hpp).
 
 #include "litamin2/core/tracker_config.hpp"
+#include "litamin2/service/security_config.hpp"
 #include "litamin2/service/transport_config.hpp"
 #include "litamin2/service/watchdog_config.hpp"
 
@@ -59,6 +60,8 @@ struct LimitsConfig {
 
 struct DaemonConfig {
   service::TransportConfig dds;
+  /// DDS-Security (off by default).
+  service::SecurityConfig security;
   LimitsConfig limits;
   /// Statically configured streams.
   std::vector<StreamConfig> streams;

@@ -94,7 +94,7 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
 
   std::string error;
   participant_ = dds::create_participant(
-      dds::participant_config(config_.dds, "litamin2-aggregator"), &error);
+      dds::participant_config(config_.dds, config_.security, "litamin2-aggregator"), &error);
   if (!participant_) throw std::runtime_error("cannot create the DDS participant: " + error);
   // Received patches and odometry are deserialised by CheckedTypes: malformed CDR is counted,
   // not fatal, and a patch's payload is bounded by limits.max_distributions_per_patch.

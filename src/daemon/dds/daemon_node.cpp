@@ -59,7 +59,7 @@ DaemonNode::DaemonNode(DaemonConfig config) : config_(std::move(config)) {
   discovery_ = std::make_unique<PublisherDiscovery>(points_type_probe.getName());
   std::string error;
   participant_ =
-      dds::create_participant(dds::participant_config(config_.dds, "litamin2d"),
+      dds::create_participant(dds::participant_config(config_.dds, config_.security, "litamin2d"),
                               &error, discovery_.get(), fdds::StatusMask::none());
   if (!participant_) throw std::runtime_error("cannot create the DDS participant: " + error);
 

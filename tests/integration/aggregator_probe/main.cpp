@@ -163,6 +163,9 @@ int main(int argc, char** argv) {
   std::string profile = "loopback";
   app.add_option("--domain", domain);
   app.add_option("--profile", profile);
+  std::string pki, identity;
+  app.add_option("--pki", pki, "DDS-Security: a scripts/litamin2-pki folder");
+  app.add_option("--identity", identity, "DDS-Security: the identity in --pki");
 
   CLI::App* publish = app.add_subcommand("publish", "publish keyframes as map patches");
   std::string sequence;
@@ -201,7 +204,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   litamin2::dds::ParticipantPtr participant =
-      litamin2::testing::probe_participant(profile, domain, "aggregator_probe");
+      litamin2::testing::probe_participant(profile, domain, "aggregator_probe", pki, identity);
   if (!participant) return 1;
 
   if (poses->parsed()) {

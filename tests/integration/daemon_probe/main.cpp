@@ -98,13 +98,16 @@ int main(int argc, char** argv) {
   app.add_option("--expect", expect, "odometry messages expected per stream")->required();
   app.add_option("--domain", domain);
   app.add_option("--profile", profile);
+  std::string pki, identity;
+  app.add_option("--pki", pki, "DDS-Security: a scripts/litamin2-pki folder");
+  app.add_option("--identity", identity, "DDS-Security: the identity in --pki");
   app.add_option("--timeout", timeout_s);
   app.add_option("--ready-file", ready_file, "created once every odom reader is matched");
   app.add_option("--poses-out", poses_out, "prefix of files with the received poses (KITTI)");
   CLI11_PARSE(app, argc, argv);
 
   litamin2::dds::ParticipantPtr participant =
-      litamin2::testing::probe_participant(profile, domain, "daemon_probe");
+      litamin2::testing::probe_participant(profile, domain, "daemon_probe", pki, identity);
   if (!participant) return 1;
   fdds::TypeSupport odom_type(new nav_msgs::msg::OdometryPubSubType());
   fdds::TypeSupport status_type(new diagnostic_msgs::msg::DiagnosticArrayPubSubType());

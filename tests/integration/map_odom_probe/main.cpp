@@ -72,12 +72,16 @@ int main(int argc, char** argv) {
   app.add_option("--out", prefix, "prefix of the output files");
   app.add_option("--domain", domain);
   app.add_option("--profile", profile);
+  std::string pki, identity;
+  app.add_option("--pki", pki, "DDS-Security: a scripts/litamin2-pki folder");
+  app.add_option("--identity", identity, "DDS-Security: the identity in --pki");
   app.add_option("--timeout", timeout_s);
   CLI11_PARSE(app, argc, argv);
   std::signal(SIGTERM, [](int) { g_stop = true; });
   std::signal(SIGINT, [](int) { g_stop = true; });
 
-  auto participant = litamin2::testing::probe_participant(profile, domain, "map_odom_probe");
+  auto participant =
+      litamin2::testing::probe_participant(profile, domain, "map_odom_probe", pki, identity);
   if (!participant) return 1;
   fdds::TypeSupport type(new nav_msgs::msg::OdometryPubSubType());
   type.register_type(participant.get());

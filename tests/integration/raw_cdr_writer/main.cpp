@@ -105,6 +105,9 @@ int main(int argc, char** argv) {
   app.add_option("--count", count);
   app.add_option("--domain", domain);
   app.add_option("--profile", profile);
+  std::string pki, identity;
+  app.add_option("--pki", pki, "DDS-Security: a scripts/litamin2-pki folder");
+  app.add_option("--identity", identity, "DDS-Security: the identity in --pki");
   app.add_option("--timeout", timeout_s);
   CLI11_PARSE(app, argc, argv);
 
@@ -175,7 +178,7 @@ int main(int argc, char** argv) {
   }
 
   litamin2::dds::ParticipantPtr participant =
-      litamin2::testing::probe_participant(profile, domain, "raw_cdr_writer");
+      litamin2::testing::probe_participant(profile, domain, "raw_cdr_writer", pki, identity);
   if (!participant) return 1;
   fdds::TypeSupport raw(new RawType(type_name, type == "patch"));
   raw.register_type(participant.get());

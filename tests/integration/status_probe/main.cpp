@@ -1,7 +1,8 @@
 // status_probe: records a DiagnosticArray status topic (rt/litamin2/status of litamin2d,
 // rt/litamin2/aggregator/status of litamin2-aggregator) for the integration tests: after every
 // message it rewrites --out with the latest value of every key of every status entry, one
-// "<hardware_id> <key> <value>" line each, until SIGTERM or --timeout.
+// "<hardware_id> <key> <value>" line each, until SIGTERM or --timeout. With --pki/--identity
+// it joins a secured domain (an operator may read every topic).
 
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "litamin2/dds/qos.hpp"
@@ -68,18 +69,22 @@ class Recorder : public fdds::DataReaderListener {
 int main(int argc, char** argv) {
   CLI::App app{"status_probe: records a DiagnosticArray status topic"};
   std::string topic = "rt/litamin2/status", out = "status.txt", profile = "loopback";
+  std::string pki, identity;
   int domain = 0;
   double timeout_s = 600.0;
   app.add_option("--topic", topic);
   app.add_option("--out", out);
   app.add_option("--domain", domain);
   app.add_option("--profile", profile);
+  app.add_option("--pki", pki, "DDS-Security: a scripts/litamin2-pki folder");
+  app.add_option("--identity", identity, "DDS-Security: the identity in --pki");
   app.add_option("--timeout", timeout_s);
   CLI11_PARSE(app, argc, argv);
   std::signal(SIGTERM, [](int) { g_stop = true; });
   std::signal(SIGINT, [](int) { g_stop = true; });
 
-  auto participant = litamin2::testing::probe_participant(profile, domain, "status_probe");
+  auto participant =
+      litamin2::testing::probe_participant(profile, domain, "status_probe", pki, identity);
   if (!participant) return 1;
   fdds::TypeSupport type(new diagnostic_msgs::msg::DiagnosticArrayPubSubType());
   type.register_type(participant.get());
