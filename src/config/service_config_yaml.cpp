@@ -40,12 +40,7 @@ SecurityConfig security_config_from_yaml(const YAML::Node& node) {
   SecurityConfig config;
   YamlSection security(node, "security");
   security.read("enabled", config.enabled);
-  security.read("identity_ca", config.identity_ca);
-  security.read("certificate", config.certificate);
-  security.read("private_key", config.private_key);
-  security.read("permissions_ca", config.permissions_ca);
-  security.read("governance", config.governance);
-  security.read("permissions", config.permissions);
+  for (const auto& [key, member] : SecurityConfig::kFiles) security.read(key, config.*member);
   security.reject_unknown();
   if (const auto why = security_config_error(config)) throw ConfigError(*why);
   return config;

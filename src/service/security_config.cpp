@@ -1,7 +1,6 @@
 #include "litamin2/service/security_config.hpp"
 
 #include <fstream>
-#include <utility>
 
 namespace litamin2::service {
 
@@ -19,14 +18,11 @@ SecurityConfig pki_identity(const std::string& dir, const std::string& name) {
 
 std::optional<std::string> security_config_error(const SecurityConfig& config) {
   if (!config.enabled) return std::nullopt;
-  const std::pair<const char*, const std::string*> files[] = {
-      {"identity_ca", &config.identity_ca}, {"certificate", &config.certificate},
-      {"private_key", &config.private_key}, {"permissions_ca", &config.permissions_ca},
-      {"governance", &config.governance},   {"permissions", &config.permissions}};
-  for (const auto& [key, path] : files) {
+  for (const auto& [key, member] : SecurityConfig::kFiles) {
     const std::string name = std::string("security.") + key;
-    if (path->empty()) return name + ": required when security.enabled is true";
-    if (!std::ifstream(*path)) return name + ": cannot open '" + *path + "'";
+    const std::string& path = config.*member;
+    if (path.empty()) return name + ": required when security.enabled is true";
+    if (!std::ifstream(path)) return name + ": cannot open '" + path + "'";
   }
   return std::nullopt;
 }

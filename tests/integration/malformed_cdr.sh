@@ -7,6 +7,7 @@
 # namespace, loopback profile. Usage: malformed_cdr.sh BUILD_DIR WORK_DIR SOURCE_DIR
 set -euo pipefail
 source "$(dirname "$0")/daemon_netns.sh"
+source "$(dirname "$0")/service_helpers.sh"
 build=$1
 work=$2
 tools=$build/tools
@@ -40,26 +41,8 @@ publish: {poses_period_s: 0.2, summary_period_s: 1, status_period_s: 0.2}
 watchdog: {enabled: false}
 YAML
 
-"$tools/aggregator/litamin2-aggregator" --config aggregator.yaml > aggregator.log 2>&1 &
-aggregator_pid=$!
-pids+=("$aggregator_pid")
-"$tools/litamin2d/litamin2d" --config litamin2d.yaml > daemon.log 2>&1 &
-daemon_pid=$!
-pids+=("$daemon_pid")
-"$probes/status_probe" --domain $domain --topic rt/litamin2/status --out daemon_status.txt \
-  > status_d.log 2>&1 &
-pids+=($!)
-"$probes/status_probe" --domain $domain --topic rt/litamin2/aggregator/status \
-  --out aggregator_status.txt > status_a.log 2>&1 &
-pids+=($!)
+start_services "$tools" "$probes" $domain
 
-# value FILE ID KEY: the latest status value (empty if none yet).
-value() { awk -v id="$2" -v key="$3" '$1 == id && $2 == key { print $3 }' "$1" 2>/dev/null || true; }
-# wait_value FILE ID KEY EXPECTED: until the status says so (30 s).
-wait_value() {
-  for _ in $(seq 1 300); do [ "$(value "$1" "$2" "$3")" = "$4" ] && return 0; sleep 0.1; done
-  fail "$1: $2 $3 is '$(value "$1" "$2" "$3")', expected $4"
-}
 alive() { kill -0 "$1" 2>/dev/null || fail "$2 died"; }
 
 echo "== malformed PointCloud2 samples to litamin2d (rt/raw_stream/points)"
@@ -67,8 +50,8 @@ for m in bad_bool truncated length_beyond; do
   "$probes/raw_cdr_writer" --domain $domain --type points --stream raw_stream --malformation $m \
     --count $count || fail "raw writer ($m)"
 done
-wait_value daemon_status.txt raw_stream bad_messages $((3 * count))
-wait_value daemon_status.txt raw_stream bad_messages.malformed_cdr $((3 * count))
+wait_status daemon_status.txt raw_stream bad_messages $((3 * count))
+wait_status daemon_status.txt raw_stream bad_messages.malformed_cdr $((3 * count))
 alive "$daemon_pid" litamin2d
 
 echo "== malformed map patches to litamin2-aggregator (rt/litamin2/map_patches)"
@@ -76,7 +59,7 @@ for m in truncated length_beyond; do
   "$probes/raw_cdr_writer" --domain $domain --type patch --stream raw_stream --malformation $m \
     --count $count || fail "raw writer (patch $m)"
 done
-wait_value aggregator_status.txt litamin2-aggregator patches_rejected.malformed_cdr $((2 * count))
+wait_status aggregator_status.txt litamin2-aggregator patches_rejected.malformed_cdr $((2 * count))
 alive "$aggregator_pid" litamin2-aggregator
 
 echo "== a good stream meanwhile: every frame processed, its keyframes stored"
@@ -91,14 +74,14 @@ wait "$probe_pid" || { cat probe.log; fail "the good stream was not served"; }
 grep -E "^stream|^status good" probe.log
 
 echo "== malformed odometry to litamin2-aggregator (rt/good/odom, read once good has keyframes)"
-keyframes=$(value daemon_status.txt good keyframes)
+keyframes=$(status_value daemon_status.txt good keyframes)
 if [ -z "$keyframes" ] || [ "$keyframes" -lt 1 ]; then fail "no keyframe of good"; fi
-wait_value aggregator_status.txt good keyframes "$keyframes"
-before=$(value aggregator_status.txt good odometry_rejected)
+wait_status aggregator_status.txt good keyframes "$keyframes"
+before=$(status_value aggregator_status.txt good odometry_rejected)
 for _ in $(seq 1 100); do grep -q "stream good: reading rt/good/odom" aggregator.log && break; sleep 0.1; done
 "$probes/raw_cdr_writer" --domain $domain --type odom --stream good --malformation truncated \
   --count $count || fail "raw writer (odom)"
-wait_value aggregator_status.txt good odometry_rejected $((before + count))
+wait_status aggregator_status.txt good odometry_rejected $((before + count))
 alive "$aggregator_pid" litamin2-aggregator
 alive "$daemon_pid" litamin2d
 
@@ -112,10 +95,5 @@ grep -E "^(raw_stream|good) (bad_messages|frames_processed)|^litamin2-aggregator
   daemon_status.txt aggregator_status.txt | sed 's/^/  /'
 
 echo "== SIGTERM: both exit 0"
-for pid in "$daemon_pid" "$aggregator_pid"; do
-  kill -TERM "$pid"
-  status=0
-  wait "$pid" || status=$?
-  [ "$status" -eq 0 ] || fail "exit status $status"
-done
+stop_services "$daemon_pid" "$aggregator_pid"
 echo PASS

@@ -17,6 +17,7 @@
 # Usage: security.sh BUILD_DIR WORK_DIR SOURCE_DIR
 set -euo pipefail
 source "$(dirname "$0")/daemon_netns.sh"
+source "$(dirname "$0")/service_helpers.sh"
 build=$1
 work=$2
 source_dir=$3
@@ -110,15 +111,7 @@ pids+=("$tcpdump_pid")
 for _ in $(seq 1 50); do grep -q "listening on lo" tcpdump.log && break; sleep 0.1; done
 
 echo "== 1. the secured chain"
-"$tools/aggregator/litamin2-aggregator" --config aggregator.yaml > aggregator.log 2>&1 &
-aggregator_pid=$!
-pids+=("$aggregator_pid")
-"$tools/litamin2d/litamin2d" --config litamin2d.yaml > daemon.log 2>&1 &
-daemon_pid=$!
-pids+=("$daemon_pid")
-"$probes/status_probe" --domain $domain --profile $profile --pki pki --identity operator \
-  --topic rt/litamin2/status --out daemon_status.txt > status_d.log 2>&1 &
-pids+=($!)
+start_services "$tools" "$probes" $domain --profile $profile --pki pki --identity operator
 rm -f probe.ready
 "$probes/daemon_probe" --domain $domain --profile $profile --pki pki --identity operator \
   --expect $frames --timeout 180 --stream $marker --ready-file probe.ready > probe.log 2>&1 &
@@ -128,18 +121,13 @@ timeout 180 "$tools/replay/litamin2-replay" --domain $domain --profile $profile 
   { cat replay.log; fail "the vehicle's replay"; }
 wait "$probe_pid" || { cat probe.log; fail "the operator did not get every odometry message"; }
 grep -E "^stream|^status $marker" probe.log
-value() { awk -v id="$2" -v key="$3" '$1 == id && $2 == key { print $3 }' "$1" 2>/dev/null || true; }
-keyframes=$(value daemon_status.txt $marker keyframes)
+keyframes=$(status_value daemon_status.txt $marker keyframes)
 if [ -z "$keyframes" ] || [ "$keyframes" -lt 1 ]; then fail "no keyframes"; fi
-stored=0
-for _ in $(seq 1 300); do
-  stored=$(sqlite3 -readonly store.db "select count(*) from keyframes" 2>/dev/null || echo 0)
-  [ "$stored" -ge "$keyframes" ] && break
-  sleep 0.1
-done
+wait_status aggregator_status.txt $marker keyframes "$keyframes"
+stored=$(sqlite3 -readonly store.db "select count(*) from keyframes")
 [ "$stored" -eq "$keyframes" ] || fail "store: $stored keyframes, expected $keyframes"
 echo "operator: $frames odometry messages; store: $stored keyframes"
-received=$(value daemon_status.txt $marker frames_received)
+received=$(status_value daemon_status.txt $marker frames_received)
 streams_before=$(awk '$2 == "frames_received"' daemon_status.txt | wc -l)
 
 echo "== 2. participants without a valid certificate change nothing"
@@ -166,7 +154,7 @@ done
 sleep 1
 now=$(sqlite3 -readonly store.db "select count(*) from keyframes")
 [ "$now" -eq "$stored" ] || fail "store rows changed: $stored -> $now"
-[ "$(value daemon_status.txt $marker frames_received)" = "$received" ] ||
+[ "$(status_value daemon_status.txt $marker frames_received)" = "$received" ] ||
   fail "the daemon's counters changed"
 [ "$(awk '$2 == "frames_received"' daemon_status.txt | wc -l)" -eq "$streams_before" ] ||
   fail "the daemon started a stream for an intruder"
@@ -194,12 +182,7 @@ sed -n 's/^/  /p' refuse_points.log | grep -iE "cannot|refused" | head -2
   fail "store rows changed"
 
 echo "== SIGTERM"
-for pid in "$daemon_pid" "$aggregator_pid"; do
-  kill -TERM "$pid"
-  status=0
-  wait "$pid" || status=$?
-  [ "$status" -eq 0 ] || fail "exit status $status"
-done
+stop_services "$daemon_pid" "$aggregator_pid"
 kill -INT "$tcpdump_pid"
 wait "$tcpdump_pid" || true
 

@@ -7,6 +7,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 
 namespace litamin2::service {
 
@@ -26,6 +27,15 @@ struct SecurityConfig {
   /// This participant's permissions document, S/MIME-signed by permissions_ca, with a grant
   /// for the certificate's subject (permissions.p7s).
   std::string permissions;
+
+  /// The six files by their key in the section, in the order they are checked.
+  static constexpr std::pair<const char*, std::string SecurityConfig::*> kFiles[] = {
+      {"identity_ca", &SecurityConfig::identity_ca},
+      {"certificate", &SecurityConfig::certificate},
+      {"private_key", &SecurityConfig::private_key},
+      {"permissions_ca", &SecurityConfig::permissions_ca},
+      {"governance", &SecurityConfig::governance},
+      {"permissions", &SecurityConfig::permissions}};
 };
 
 /// The security files of participant `name` in a folder made by scripts/litamin2-pki

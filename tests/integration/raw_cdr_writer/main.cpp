@@ -93,8 +93,8 @@ void put_u32(std::vector<unsigned char>& b, std::size_t offset, std::uint32_t v)
 int main(int argc, char** argv) {
   CLI::App app{"raw_cdr_writer: publishes corrupted CDR samples"};
   std::string type = "points", topic, stream = "raw_stream", malformation = "bad_bool";
-  std::string profile = "loopback";
-  int domain = 0, count = 5;
+  litamin2::testing::ProbeParticipantOptions dds_options;
+  int count = 5;
   double timeout_s = 30.0;
   app.add_option("--type", type, "points | patch | odom")->required();
   app.add_option("--topic", topic,
@@ -103,11 +103,7 @@ int main(int argc, char** argv) {
   app.add_option("--stream", stream);
   app.add_option("--malformation", malformation, "valid | bad_bool | truncated | length_beyond");
   app.add_option("--count", count);
-  app.add_option("--domain", domain);
-  app.add_option("--profile", profile);
-  std::string pki, identity;
-  app.add_option("--pki", pki, "DDS-Security: a scripts/litamin2-pki folder");
-  app.add_option("--identity", identity, "DDS-Security: the identity in --pki");
+  dds_options.add_to(app);
   app.add_option("--timeout", timeout_s);
   CLI11_PARSE(app, argc, argv);
 
@@ -178,7 +174,7 @@ int main(int argc, char** argv) {
   }
 
   litamin2::dds::ParticipantPtr participant =
-      litamin2::testing::probe_participant(profile, domain, "raw_cdr_writer", pki, identity);
+      litamin2::testing::probe_participant(dds_options, "raw_cdr_writer");
   if (!participant) return 1;
   fdds::TypeSupport raw(new RawType(type_name, type == "patch"));
   raw.register_type(participant.get());

@@ -68,23 +68,18 @@ class Recorder : public fdds::DataReaderListener {
 
 int main(int argc, char** argv) {
   CLI::App app{"status_probe: records a DiagnosticArray status topic"};
-  std::string topic = "rt/litamin2/status", out = "status.txt", profile = "loopback";
-  std::string pki, identity;
-  int domain = 0;
+  std::string topic = "rt/litamin2/status", out = "status.txt";
+  litamin2::testing::ProbeParticipantOptions dds_options;
   double timeout_s = 600.0;
   app.add_option("--topic", topic);
   app.add_option("--out", out);
-  app.add_option("--domain", domain);
-  app.add_option("--profile", profile);
-  app.add_option("--pki", pki, "DDS-Security: a scripts/litamin2-pki folder");
-  app.add_option("--identity", identity, "DDS-Security: the identity in --pki");
+  dds_options.add_to(app);
   app.add_option("--timeout", timeout_s);
   CLI11_PARSE(app, argc, argv);
   std::signal(SIGTERM, [](int) { g_stop = true; });
   std::signal(SIGINT, [](int) { g_stop = true; });
 
-  auto participant =
-      litamin2::testing::probe_participant(profile, domain, "status_probe", pki, identity);
+  auto participant = litamin2::testing::probe_participant(dds_options, "status_probe");
   if (!participant) return 1;
   fdds::TypeSupport type(new diagnostic_msgs::msg::DiagnosticArrayPubSubType());
   type.register_type(participant.get());
