@@ -46,12 +46,17 @@ done
 echo "ok   $(wc -w <<<"$built_libs") shared libraries installed in $prefix/lib"
 # The build tree must not be what the tools load: move it away while they run.
 mv "$build" "$build.away"
+libdir=$(realpath "$dest$prefix/lib")
+before_tools=$failures
 for tool in "$dest$prefix"/bin/*; do
   name=$(basename "$tool")
-  missing=$(env -u LD_LIBRARY_PATH ldd "$tool" 2>&1 | grep -E 'not found' || true)
+  resolved=$(env -u LD_LIBRARY_PATH ldd "$tool" 2>&1)
+  missing=$(grep -E 'not found' <<<"$resolved" || true)
   [ -z "$missing" ] || fail "$name: $missing"
-  wrong=$(env -u LD_LIBRARY_PATH ldd "$tool" 2>&1 | grep 'liblitamin2_' | grep -v "$dest$prefix/lib/" || true)
-  [ -z "$wrong" ] || fail "$name loads a project library from elsewhere: $wrong"
+  while read -r lib path; do
+    [ -n "$path" ] || continue
+    [ "$(dirname "$(realpath "$path")")" = "$libdir" ] || fail "$name loads $lib from $path"
+  done < <(awk '/liblitamin2_/ && $3 ~ /^\// {print $1, $3}' <<<"$resolved")
   env -u LD_LIBRARY_PATH "$tool" --help > "$work/$name.help" 2>&1 || fail "$name --help exited $?"
 done
 etc="$dest$prefix/etc/litamin2"
@@ -64,7 +69,8 @@ if [ -x "$dest$prefix/bin/litamin2-aggregator" ]; then
     fail "installed litamin2-aggregator --check-config: $out"
 fi
 mv "$build.away" "$build"
-echo "ok   $(ls "$dest$prefix/bin" | wc -l) installed tools run from $prefix/bin"
+[ "$failures" -eq "$before_tools" ] &&
+  echo "ok   $(ls "$dest$prefix/bin" | wc -l) installed tools run from $prefix/bin"
 [ "$failures" -eq 0 ] && echo "deploy_shared_install: all checks passed" ||
   echo "deploy_shared_install: $failures failure(s)"
 [ "$failures" -eq 0 ]
