@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string_view>
@@ -230,13 +231,21 @@ double decode(const Field& f, const char* p) {
   }
 }
 
-void append_point(PointCloud& cloud, const Eigen::Vector3d& p, const Field* intensity_field,
-                  double intensity) {
+/// Appends point `index` of the file: dropped when a coordinate is NaN/Inf (PCL's "no return"
+/// points of organised clouds); a coordinate beyond float range or an intensity that is not a
+/// finite float rejects the file (IoError): nothing is repaired.
+void append_point(const std::string& path, std::size_t index, PointCloud& cloud,
+                  const Eigen::Vector3d& p, const Field* intensity_field, double intensity) {
   if (!p.allFinite()) return;
-  const Eigen::Vector3f pf = p.cast<float>();
-  if (!pf.allFinite()) return;  // finite double beyond float range
-  cloud.points.push_back(pf);
-  if (intensity_field) cloud.intensities.push_back(static_cast<float>(intensity));
+  constexpr double kFloatMax = std::numeric_limits<float>::max();
+  if (p.cwiseAbs().maxCoeff() > kFloatMax)
+    throw IoError(path, "point " + std::to_string(index) + ": a coordinate is beyond float range");
+  cloud.points.push_back(p.cast<float>());
+  if (!intensity_field) return;
+  if (!(std::fabs(intensity) <= kFloatMax))
+    throw IoError(path, "point " + std::to_string(index) + ": intensity " +
+                            std::to_string(intensity) + " is not a finite float");
+  cloud.intensities.push_back(static_cast<float>(intensity));
 }
 
 }  // namespace
@@ -271,7 +280,7 @@ PointCloud read_pcd(const std::string& path) {
       const char* rec = bytes.data() + header.data_offset + i * header.record_size;
       const Eigen::Vector3d p(decode(*fx, rec + fx->offset), decode(*fy, rec + fy->offset),
                               decode(*fz, rec + fz->offset));
-      append_point(cloud, p, fi, fi ? decode(*fi, rec + fi->offset) : 0.0);
+      append_point(path, i, cloud, p, fi, fi ? decode(*fi, rec + fi->offset) : 0.0);
     }
     return cloud;
   }
@@ -303,7 +312,8 @@ PointCloud read_pcd(const std::string& path) {
       }
       return *v;
     };
-    append_point(cloud, Eigen::Vector3d(value(fx), value(fy), value(fz)), fi, fi ? value(fi) : 0.0);
+    append_point(path, read, cloud, Eigen::Vector3d(value(fx), value(fy), value(fz)), fi,
+                 fi ? value(fi) : 0.0);
     ++read;
   }
   if (read != n) {
