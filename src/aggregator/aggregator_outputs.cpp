@@ -18,7 +18,7 @@ std::vector<StreamPoses> collect(const mapping::Mapper& mapper,
     s.stream = p.key.stream;
     s.anchor = p.frame;
     s.in_map_frame = !anchor.empty() && p.frame == anchor;
-    const Keyframe* kf = mapper.keyframe(p.key);
+    const mapping::KeyframeNode* kf = mapper.node(p.key);
     s.keyframes.push_back({p.key.id, kf ? kf->stamp : Stamp{}, p.pose});
   }
   std::vector<StreamPoses> out;

@@ -27,6 +27,11 @@ struct PoseGraphEdge {
   std::optional<Matrix6d> covariance;
   /// Robust loss (loop edges) or plain least squares (odometry edges).
   bool robust = false;
+  /// The measured poses are those of nodes[from] * from_offset and nodes[to] * to_offset: a
+  /// node is then a rigid segment of keyframes and an offset a keyframe's pose in its
+  /// segment's frame (segment_graph.hpp). Identity for an edge between the nodes themselves.
+  Eigen::Isometry3d from_offset = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d to_offset = Eigen::Isometry3d::Identity();
 };
 
 struct PoseGraphResult {
