@@ -147,4 +147,43 @@ std::vector<Distribution> decode_distributions(const void* data, std::size_t siz
   return out;
 }
 
+std::string encode_descriptor(const mapping::PlaceDescriptor& d) {
+  const std::size_t cells = static_cast<std::size_t>(d.rings) * static_cast<std::size_t>(d.sectors);
+  if (d.rings < 0 || d.sectors < 0 || d.rings > 65535 || d.sectors > 65535 ||
+      d.ring_key.size() != static_cast<std::size_t>(d.rings) || d.cells.size() != cells)
+    throw std::invalid_argument("inconsistent place descriptor");
+  std::string out(4 + 4 * d.ring_key.size() + cells, '\0');
+  unsigned char* p = bytes(out);
+  p[0] = static_cast<unsigned char>(d.rings & 0xff);
+  p[1] = static_cast<unsigned char>(d.rings >> 8);
+  p[2] = static_cast<unsigned char>(d.sectors & 0xff);
+  p[3] = static_cast<unsigned char>(d.sectors >> 8);
+  p += 4;
+  for (float v : d.ring_key) {
+    put_f32(p, v);
+    p += 4;
+  }
+  std::memcpy(p, d.cells.data(), cells);
+  return out;
+}
+
+mapping::PlaceDescriptor decode_descriptor(const void* data, std::size_t size) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  if (size < 4) throw std::invalid_argument("descriptor blob too short");
+  mapping::PlaceDescriptor d;
+  d.rings = p[0] | (p[1] << 8);
+  d.sectors = p[2] | (p[3] << 8);
+  const std::size_t cells = static_cast<std::size_t>(d.rings) * static_cast<std::size_t>(d.sectors);
+  check_size("descriptor", size, 4 + 4 * static_cast<std::size_t>(d.rings) + cells);
+  p += 4;
+  d.ring_key.resize(static_cast<std::size_t>(d.rings));
+  for (float& v : d.ring_key) {
+    v = get_f32(p);
+    if (!std::isfinite(v)) throw std::invalid_argument("non-finite descriptor ring key");
+    p += 4;
+  }
+  d.cells.assign(p, p + cells);
+  return d;
+}
+
 }  // namespace litamin2::store

@@ -1,11 +1,19 @@
 #pragma once
 /// The aggregator's state without threads or transport: the durable store and the mapper.
 ///
-/// Opening recovers: every stored keyframe is loaded (in canonical order) into a new mapper, so
-/// the mapper's state after a restart (even after kill -9) depends only on the set of stored
-/// keyframes. ingest() commits new keyframes to the store first and only then adds them to the
-/// mapper: whatever the mapper knows is durable. Duplicates (a key already known, or twice in
-/// one batch) are counted and ignored: the first patch of a key wins.
+/// Opening recovers the mapper's graph from the store's indexed tables (nodes with their
+/// descriptors, corrected poses, loop edges: Recovery::kTables), without a registration, in
+/// time linear in the keyframes with a small constant; the distributions stay in the store and
+/// come back through the mapper's bounded DistributionCache. A store written before those
+/// tables (schema version 1) is replayed once: every keyframe loaded in canonical order into a
+/// new mapper (Recovery::kReplay, also what `export --replay` does: a state that depends only
+/// on the set of stored keyframes).
+///
+/// ingest() runs one store transaction per batch: the new keyframes, then the graph changes
+/// they caused (new loop edges, moved corrected poses). A kill -9 at any point leaves either
+/// the batch's keyframes with all they caused or none of it (then the daemons' transient-local
+/// history delivers them again). Nothing is published before the commit. Duplicates (a key
+/// already known, or twice in one batch) are counted and ignored: the first patch of a key wins.
 ///
 /// Not thread-safe: one owner (the mapping thread; export runs it on its own).
 
@@ -49,6 +57,20 @@ struct IngestCpu {
   double optimize_s = 0.0;
   /// Storing the loop edges and corrected poses after loops or an optimisation.
   double save_graph_s = 0.0;
+  /// Applying full passes (moving the keyframes, storing the moved poses).
+  double full_pass_apply_s = 0.0;
+};
+
+struct CoreOptions {
+  enum class Recovery {
+    /// From the indexed tables (a version-1 store is replayed once).
+    kTables,
+    /// Every keyframe through a new mapper, in canonical order.
+    kReplay,
+  };
+  Recovery recovery = Recovery::kTables;
+  /// Bytes of distributions the mapper's cache holds (0 = unbounded).
+  std::size_t distribution_cache_bytes = 512u << 20;
 };
 
 class AggregatorCore {
@@ -60,14 +82,20 @@ class AggregatorCore {
   /// rebuilds the mapper from it and optimises. Throws ConfigError for an invalid mapper config.
   AggregatorCore(const std::string& store_path, store::OpenMode mode,
                  const mapping::MapperConfig& mapper_config,
-                 const store::StoreOptions& store_options = {}, const Progress& progress = {});
+                 const store::StoreOptions& store_options = {}, const Progress& progress = {},
+                 const CoreOptions& options = {});
 
   /// Commits the keyframes of `batch` not known yet to the store (one transaction), then adds
   /// them to the mapper in canonical order, optimises when loops were found and stores the new
   /// loop edges and corrected poses. `batch` is consumed.
   IngestResult ingest(std::vector<Keyframe>& batch);
 
+  /// Moves the keyframes by a solved full pass (Mapper::full_pass_problem, solved elsewhere)
+  /// and stores the moved poses. Returns how many keyframes moved.
+  std::size_t apply_full_pass(const mapping::FullPassProblem& problem);
+
   const mapping::Mapper& mapper() const { return mapper_; }
+  mapping::Mapper& mapper() { return mapper_; }
   const store::KeyframeStore& store() const { return store_; }
   std::size_t recovered() const { return recovered_; }
   std::size_t duplicates() const { return duplicates_; }
@@ -78,9 +106,13 @@ class AggregatorCore {
   static const RegularizerConfig& regularizer();
 
  private:
-  void save_graph();
+  void recover_from_tables(const Progress& progress);
+  void replay(const Progress& progress);
+  /// Stores the loops from index `first_new` on and the poses that changed.
+  void save_changes(std::size_t first_new);
 
   store::KeyframeStore store_;
+  bool read_only_ = false;
   mapping::Mapper mapper_;
   std::size_t recovered_ = 0;
   std::size_t duplicates_ = 0;

@@ -59,7 +59,10 @@ class KeyframeStore {
   /// SQLite application_id (file header offset 68) of a keyframe store: "LT2K".
   static constexpr std::int32_t kApplicationId = 0x4C54324B;
   /// Schema version (PRAGMA user_version) this build reads and writes.
-  static constexpr int kSchemaVersion = 1;
+  static constexpr int kSchemaVersion = 2;
+  /// The oldest version it opens: a version-1 store opened for writing is upgraded in place
+  /// (nodes and tiles tables; migrate_schema), one opened read-only is read as it is.
+  static constexpr int kOldestSchemaVersion = 1;
 
   /// Opens or creates the store at `path`. Throws StoreError naming the path and the reason.
   static KeyframeStore open(const std::string& path, OpenMode mode,
@@ -79,8 +82,72 @@ class KeyframeStore {
   /// already (then the stored one is kept unchanged). Returns true if it was new.
   bool insert_keyframe(const Keyframe& keyframe);
   /// Inserts the keyframes not stored yet, all in one transaction (all or none on error).
-  /// Returns how many were new.
-  std::size_t insert_keyframes(const std::vector<const Keyframe*>& keyframes);
+  /// Returns how many were new. With `descriptors` (one per keyframe), each new keyframe's
+  /// node row (what a restart reads instead of the distributions) is written too.
+  std::size_t insert_keyframes(
+      const std::vector<const Keyframe*>& keyframes,
+      const std::vector<const mapping::PlaceDescriptor*>& descriptors = {});
+
+  /// A transaction spanning several calls (the aggregator's batch: its keyframes, then the
+  /// graph changes they caused), committed by commit(), else rolled back on destruction.
+  /// Calls made meanwhile join it instead of committing on their own.
+  class Batch {
+   public:
+    explicit Batch(KeyframeStore& store);
+    Batch(const Batch&) = delete;
+    Batch& operator=(const Batch&) = delete;
+    ~Batch();
+    void commit();
+
+   private:
+    KeyframeStore& store_;
+    bool done_ = false;
+  };
+
+  /// One keyframe's distributions (what the mapper's DistributionCache reads on a miss).
+  /// Throws StoreError if the keyframe is missing or its row is corrupt.
+  std::vector<Distribution> load_distributions(const KeyframeKey& key,
+                                               const RegularizerConfig& regularizer = {}) const;
+
+  /// What a restart rebuilds the mapper from, without the distributions: every keyframe's
+  /// node (descriptor empty where none is stored: made from the distributions by the caller),
+  /// its corrected pose if one is stored, and the loop edges.
+  struct GraphRecords {
+    struct Node {
+      mapping::KeyframeNode node;
+      /// The node's descriptor was stored (else node.descriptor is empty).
+      bool has_descriptor = false;
+      /// A corrected pose was stored (node.pose; else it is the odometry pose).
+      bool has_pose = false;
+      std::string frame;
+    };
+    std::vector<Node> nodes;
+    std::vector<mapping::LoopEdge> loops;
+  };
+  GraphRecords load_graph() const;
+  /// Stores descriptors of nodes that have none (after a migration).
+  void store_descriptors(
+      const std::vector<std::pair<KeyframeKey, const mapping::PlaceDescriptor*>>& descriptors);
+
+  /// Inserts loop edges (an edge stored already is an error).
+  void insert_loop_edges(const std::vector<mapping::LoopEdge>& edges);
+  /// Inserts or replaces the corrected poses given (the others stay).
+  void upsert_corrected_poses(const std::vector<CorrectedPose>& poses);
+
+  /// A map tile (tile_map.hpp): its fused distributions.
+  struct Tile {
+    std::int64_t ix = 0;
+    std::int64_t iy = 0;
+    /// Keyframes it was fused from.
+    std::int64_t keyframes = 0;
+    std::vector<Distribution> voxels;
+  };
+  /// Inserts or replaces tiles; a tile without voxels is deleted.
+  void upsert_tiles(const std::vector<Tile>& tiles);
+  /// The tiles with ix0 <= ix <= ix1 and iy0 <= iy <= iy1, ordered by (ix, iy).
+  std::vector<Tile> load_tiles(std::int64_t ix0, std::int64_t iy0, std::int64_t ix1,
+                               std::int64_t iy1) const;
+  std::size_t tile_count() const;
 
   /// Every keyframe, in canonical order (canonical_before). Distributions get their
   /// cov, shape_cov and shape_cov_inv from the stored covariance with `regularizer`.
@@ -104,7 +171,9 @@ class KeyframeStore {
   struct Impl;
   explicit KeyframeStore(std::unique_ptr<Impl> impl);
   Impl& impl() const;
+  void write_loop_edges(const std::vector<mapping::LoopEdge>& edges);
   std::unique_ptr<Impl> impl_;
+  friend class Batch;
 };
 
 }  // namespace litamin2::store

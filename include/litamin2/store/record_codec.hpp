@@ -9,6 +9,8 @@
 ///   float32 mean[3], float32 covariance upper triangle (xx, xy, xz, yy, yz, zz), uint32 count.
 ///   Only the ICP-term covariance is stored; the Cov term's shape_cov and shape_cov_inv are
 ///   recomputed on decoding with the caller's regulariser, as the tracker computes them.
+/// - place descriptor: uint16 rings, uint16 sectors, float32 ring_key[rings], uint8
+///   cells[rings * sectors] (row-major by ring).
 ///
 /// Decoders throw std::invalid_argument with the reason when the bytes cannot be a value of
 /// the type (wrong size, non-finite pose, count out of range); the store adds which row it was.
@@ -16,6 +18,7 @@
 #include "litamin2/core/covariance_regularizer.hpp"
 #include "litamin2/core/distribution.hpp"
 #include "litamin2/core/keyframe.hpp"
+#include "litamin2/mapping/place_descriptor.hpp"
 
 #include <Eigen/Geometry>
 #include <cstddef>
@@ -38,5 +41,8 @@ Matrix6d decode_matrix6(const void* data, std::size_t size);
 std::string encode_distributions(const std::vector<Distribution>& distributions);
 std::vector<Distribution> decode_distributions(const void* data, std::size_t size,
                                                const RegularizerConfig& regularizer);
+
+std::string encode_descriptor(const mapping::PlaceDescriptor& descriptor);
+mapping::PlaceDescriptor decode_descriptor(const void* data, std::size_t size);
 
 }  // namespace litamin2::store
