@@ -33,11 +33,21 @@ FleetWorld::FleetWorld(const FleetWorldConfig& config) : config_(config) {
         const double length = (p1 - p0).norm() - 12.0;
         while (s < length) {
           const double width = std::min(8.0 + 17.0 * u(rng), length - s);
-          const double depth = 2.0 * u(rng);  // facades do not line up exactly
-          const Eigen::Vector2d a = p0 + dir * s - n * depth,
-                                c = p0 + dir * (s + width) - n * depth;
-          add_facade(a, c, 4.0 + 16.0 * u(rng), n);
-          s += width + 6.0 * u(rng) * (u(rng) < 0.4);
+          // Each building its own setback and a turn of up to +-12 degrees, so that no two
+          // streets line up alike (a grid of parallel walls fits any other street along the
+          // walls' normals).
+          const double depth = 5.0 * u(rng);
+          const double turn = (u(rng) - 0.5) * 24.0 * M_PI / 180.0;
+          const Eigen::Vector2d centre = p0 + dir * (s + width / 2) - n * depth;
+          const Eigen::Rotation2Dd rot(turn);
+          const Eigen::Vector2d d2 = rot * dir;
+          add_facade(centre - d2 * (width / 2), centre + d2 * (width / 2), 4.0 + 16.0 * u(rng),
+                     rot * n);
+          if (u(rng) < 0.5) {  // a side wall, seen at the gaps
+            const Eigen::Vector2d corner = centre + d2 * (width / 2);
+            add_facade(corner - (rot * n) * 8.0, corner, 4.0 + 8.0 * u(rng), d2);
+          }
+          s += width + 2.0 + 8.0 * u(rng) * (u(rng) < 0.5);
         }
         // Poles and trees at the kerb, 4.5 m from the centre line.
         for (double t = 5.0 + 20.0 * u(rng); t < b - 5.0; t += 12.0 + 20.0 * u(rng)) {
