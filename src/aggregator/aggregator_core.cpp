@@ -113,15 +113,16 @@ IngestResult AggregatorCore::ingest(std::vector<Keyframe>& batch) {
   }
 
   // What the store gives back on a re-read, exactly: the distributions through its encoding,
-  // with the covariance regularisation it applies on load. A live mapper and one that reads
-  // evicted keyframes back see the same numbers.
+  // with the covariance regularisation it applies on load (the store keeps the received
+  // ones). A live mapper and one that reads evicted keyframes back see the same numbers.
   std::vector<mapping::PlaceDescriptor> descriptors;
+  std::vector<std::vector<Distribution>> decoded;
   descriptors.reserve(fresh.size());
+  decoded.reserve(fresh.size());
   for (std::size_t i : fresh) {
-    Keyframe& kf = batch[i];
-    const std::string encoded = store::encode_distributions(kf.distributions);
-    kf.distributions = store::decode_distributions(encoded.data(), encoded.size(), regularizer());
-    descriptors.push_back(mapper_.describe(kf.distributions));
+    const std::string encoded = store::encode_distributions(batch[i].distributions);
+    decoded.push_back(store::decode_distributions(encoded.data(), encoded.size(), regularizer()));
+    descriptors.push_back(mapper_.describe(decoded.back()));
   }
   now = thread_cpu_seconds();
   cpu_.regularize_s += now - t;
@@ -145,6 +146,7 @@ IngestResult AggregatorCore::ingest(std::vector<Keyframe>& batch) {
   std::vector<mapping::LoopEdge> loops;
   for (std::size_t k = 0; k < fresh.size(); ++k) {
     Keyframe keyframe = std::move(batch[fresh[k]]);
+    keyframe.distributions = std::move(decoded[k]);
     result.streams.insert(keyframe.key.stream);
     result.keys.push_back(keyframe.key);
     if (mapper_.add_keyframe(std::move(keyframe), &loops, &descriptors[k]) ==

@@ -69,8 +69,11 @@ std::vector<std::string> write_trajectories(const std::string& dir, const Stream
 }
 
 ExportResult export_store(const ExportOptions& options) {
+  CoreOptions core_options;
+  core_options.recovery =
+      options.replay ? CoreOptions::Recovery::kReplay : CoreOptions::Recovery::kTables;
   const AggregatorCore core(options.store, store::OpenMode::kReadOnly, options.mapper, {},
-                            options.progress);
+                            options.progress, core_options);
   const mapping::Mapper& mapper = core.mapper();
   ExportResult result;
   result.keyframes = mapper.stats().keyframes;

@@ -57,9 +57,54 @@ void MappingWorker::run() {
     if (n > 0 && !failed_) process(batch);
     batch.clear();
     if (n == 0 && queue_.closed() && queue_.size() == 0) break;
+    if (!failed_) full_pass(false);
     publish(false);
   }
+  if (!failed_) full_pass(true);
   publish(true);
+}
+
+void MappingWorker::full_pass(bool stopping) {
+  if (stopping) full_pass_worker_.wait();
+  mapping::Mapper& mapper = core_.mapper();
+  auto apply = [&](const mapping::FullPassProblem& solved) {
+    busy_since_ = Clock::now().time_since_epoch().count();
+    try {
+      core_.apply_full_pass(solved);
+    } catch (const std::exception& e) {
+      spdlog::error("storing a full pass failed: {}", e.what());
+      failed_ = true;
+      busy_since_ = 0;
+      std::lock_guard lock(mutex_);
+      status_.error = e.what();
+      return;
+    }
+    busy_since_ = 0;
+    last_full_pass_end_ = Clock::now();
+    last_full_pass_s_ = solved.milliseconds / 1000.0;
+    spdlog::info(
+        "full pass: {} segments, {} loop edges, {} iterations, {:.1f} ms in the background",
+        solved.poses.size(), solved.loop_edges, solved.result.iterations, solved.milliseconds);
+    for (const auto& [stream, counts] : status().streams) dirty_streams_.insert(stream);
+    summary_dirty_ = true;
+    std::lock_guard lock(mutex_);
+    ++status_.full_passes;
+    status_.full_pass_cpu_s += solved.cpu_s;
+  };
+  if (auto solved = full_pass_worker_.take()) apply(*solved);
+  if (failed_) return;
+  if (stopping) {
+    if (config_.full_pass.on_stop && mapper.loops_since_full_pass() > 0) {
+      mapping::FullPassProblem problem = mapper.full_pass_problem();
+      mapping::GraphOptimizer::solve_full_pass(problem);
+      apply(problem);
+    }
+    return;
+  }
+  const double since = std::chrono::duration<double>(Clock::now() - last_full_pass_end_).count();
+  if (!full_pass_worker_.busy() &&
+      full_pass_due(config_.full_pass, mapper.loops_since_full_pass(), since, last_full_pass_s_))
+    full_pass_worker_.submit(mapper.full_pass_problem());
 }
 
 void MappingWorker::process(std::vector<Keyframe>& batch) {

@@ -32,6 +32,7 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
     YamlSection store(root.child("store"), "store");
     store.read("path", config.store.path);
     store.read("synchronous_full", config.store.synchronous_full);
+    store.read_range("distribution_cache_mb", config.store.distribution_cache_mb, 1, 1'000'000);
     store.reject_unknown();
   }
 
@@ -55,6 +56,13 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
   config.mapper = read_section("mapper", [&] {
     return mapping::mapper_config_from_yaml(mapper ? mapper : YAML::Node(YAML::NodeType::Map));
   });
+  {
+    YamlSection full_pass(root.child("full_pass"), "full_pass");
+    full_pass.read_range("max_duty", config.full_pass.max_duty, 0.0, 1.0);
+    full_pass.read_range("min_interval_s", config.full_pass.min_interval_s, 0.0, 86400.0);
+    full_pass.read("on_stop", config.full_pass.on_stop);
+    full_pass.reject_unknown();
+  }
   config.watchdog = service::watchdog_config_from_yaml(root.child("watchdog"), 86400.0);
   service::read_log_level(root, config.log_level);
   root.reject_unknown();

@@ -327,6 +327,24 @@ FullPassProblem GraphOptimizer::full_pass_problem(const KeyframeGraph& graph,
     p.edges.push_back(e);
     ++p.loop_edges;
   }
+  // Every connected part needs a fixed segment: a group joined by a loop that was then dropped
+  // as inconsistent stays joined without an edge between its parts.
+  std::vector<std::size_t> parent(p.poses.size());
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = i;
+  auto root = [&](std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (const PoseGraphEdge& e : p.edges)
+    parent[root(static_cast<std::size_t>(e.from))] = root(static_cast<std::size_t>(e.to));
+  std::vector<bool> part_fixed(p.poses.size(), false);
+  for (std::size_t i = 0; i < p.poses.size(); ++i)
+    if (p.fixed[i]) part_fixed[root(i)] = true;
+  for (std::size_t i = 0; i < p.poses.size(); ++i) {
+    if (part_fixed[root(i)]) continue;
+    p.fixed[i] = true;
+    part_fixed[root(i)] = true;
+  }
   p.before = p.poses;
   return p;
 }

@@ -43,8 +43,9 @@ AggregatorCore::Progress progress_printer(const char* what) {
 }
 
 int run_export(const std::string& store_path, const std::string& map_ply,
-               const std::string& trajectories, const std::string& config_file) {
+               const std::string& trajectories, const std::string& config_file, bool replay) {
   ExportOptions options;
+  options.replay = replay;
   options.store = store_path;
   options.map_ply = map_ply;
   options.trajectories_dir = trajectories;
@@ -87,10 +88,14 @@ int main(int argc, char** argv) {
   CLI::App* exporter = app.add_subcommand(
       "export", "write the map (PLY) and trajectories (KITTI, TUM) of a store, read-only");
   std::string store_path, map_ply, trajectories, export_config;
+  bool replay = false;
   exporter->add_option("--store", store_path, "the aggregator's store (SQLite)")->required();
   exporter->add_option("--map", map_ply, "global map of distributions (.ply)");
   exporter->add_option("--trajectories", trajectories,
                        "folder for <stream>_kitti.txt and <stream>_tum.txt");
+  exporter->add_flag("--replay", replay,
+                     "rebuild the graph from every keyframe in canonical order (O(N) "
+                     "registrations) instead of reading the stored graph");
   exporter->add_option("--mapper-config", export_config,
                        "aggregator configuration whose mapper section to use (default: built-in)");
   try {
@@ -107,7 +112,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "error: export: give --map and/or --trajectories\n");
       return 2;
     }
-    return run_export(store_path, map_ply, trajectories, export_config);
+    return run_export(store_path, map_ply, trajectories, export_config, replay);
   }
 
   AggregatorConfig config;

@@ -178,6 +178,7 @@ int main(int argc, char** argv) {
   });
 
   std::size_t keyframes = 0, loops = 0, full_passes = 0;
+  std::vector<mapping::KeyframePose> live_poses;
   std::vector<std::pair<std::size_t, double>> batches;  // (keyframes after, mapping CPU s)
   std::vector<double> loop_latency_ms;
   double background_cpu_s = 0.0, distributions_total = 0.0;
@@ -237,6 +238,7 @@ int main(int argc, char** argv) {
       ++full_passes;
     }
     loops = core.mapper().loops().size();
+    live_poses = core.mapper().poses();
   }
   const double wall_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
   const double rss_run = peak_rss_mb();
@@ -245,6 +247,15 @@ int main(int argc, char** argv) {
   const auto r0 = Clock::now();
   AggregatorCore reopened(o.store, store::OpenMode::kMustExist, mapper, {}, {}, core_options);
   const double restart_s = std::chrono::duration<double>(Clock::now() - r0).count();
+  // The recovered graph is the one the run ended with: every pose, frame and loop.
+  const std::vector<mapping::KeyframePose> recovered = reopened.mapper().poses();
+  bool restart_identical =
+      recovered.size() == live_poses.size() && reopened.mapper().loops().size() == loops;
+  for (std::size_t i = 0; restart_identical && i < recovered.size(); ++i) {
+    restart_identical = recovered[i].key == live_poses[i].key &&
+                        recovered[i].frame == live_poses[i].frame &&
+                        recovered[i].pose.matrix() == live_poses[i].pose.matrix();
+  }
 
   // ATE of every keyframe in the map frame (vehicle 0's odometry frame = its first pose).
   const mapping::Mapper& m = reopened.mapper();
@@ -296,6 +307,7 @@ int main(int argc, char** argv) {
     << ",\n  \"peak_rss_mb\": " << rss_run
     << ",\n  \"peak_rss_mb_after_restart\": " << peak_rss_mb()
     << ",\n  \"store_mb\": " << file_mb(o.store) << ",\n  \"restart_s\": " << restart_s
+    << ",\n  \"restart_identical\": " << (restart_identical ? "true" : "false")
     << ",\n  \"ate_m\": " << ate << ",\n  \"keyframes_in_map_frame\": " << in_map
     << ",\n  \"vehicles_in_map_frame\": " << merged.size() << ",\n  \"wall_s\": " << wall_s
     << "\n}\n";

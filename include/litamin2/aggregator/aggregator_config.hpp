@@ -3,6 +3,7 @@
 /// durable store, the mapper, ingest batching, publication policy, watchdog and logging, and its
 /// validation (read from YAML by config/aggregator_config_yaml.hpp).
 
+#include "litamin2/aggregator/full_pass_worker.hpp"
 #include "litamin2/mapping/mapper_config.hpp"
 #include "litamin2/service/transport_config.hpp"
 #include "litamin2/service/watchdog_config.hpp"
@@ -34,6 +35,9 @@ struct StoreConfig {
   std::string path = "/var/lib/litamin2/aggregator.db";
   /// fsync at every commit (survives power loss; kill -9 is survived either way).
   bool synchronous_full = false;
+  /// Megabytes of keyframe distributions kept in memory (the mapper's DistributionCache); the
+  /// rest is read back from the store when a verification or the map needs it.
+  int distribution_cache_mb = 512;
 };
 
 struct IngestConfig {
@@ -62,6 +66,8 @@ struct AggregatorConfig {
   IngestConfig ingest;
   PublishConfig publish;
   mapping::MapperConfig mapper;
+  /// The background full pass of the pose graph (full_pass_worker.hpp).
+  FullPassConfig full_pass;
   service::WatchdogConfig watchdog;
   /// spdlog level: trace, debug, info, warn, error, critical, off.
   std::string log_level = "info";

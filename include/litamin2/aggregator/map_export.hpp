@@ -1,8 +1,10 @@
 #pragma once
 /// `litamin2-aggregator export`: the map and trajectories of a store, rebuilt offline.
 ///
-/// The store is opened read-only (never modified), every keyframe is loaded in canonical order
-/// into a new mapper (exactly as the aggregator does at start), and the results are written:
+/// The store is opened read-only (never modified) and its graph recovered as the aggregator
+/// does at start (from the indexed tables: the state the aggregator last committed), or, with
+/// `replay`, rebuilt by loading every keyframe in canonical order into a new mapper (a state
+/// that depends only on the set of stored keyframes, O(N) registrations); then written:
 ///  - the global map as a binary PLY, one vertex per distribution with float properties
 ///    x y z (mean), c00 c01 c02 c11 c12 c22 (covariance), nx ny nz (unit normal: the
 ///    covariance's least eigenvector, nz >= 0) and count;
@@ -28,6 +30,8 @@ struct ExportOptions {
   std::string trajectories_dir;
   mapping::MapperConfig mapper;
   AggregatorCore::Progress progress;
+  /// Rebuild the graph from the keyframes instead of reading it from the tables.
+  bool replay = false;
 };
 
 struct ExportResult {

@@ -7,6 +7,7 @@
 #include "litamin2/aggregator/aggregator_config.hpp"
 #include "litamin2/aggregator/aggregator_core.hpp"
 #include "litamin2/aggregator/aggregator_sink.hpp"
+#include "litamin2/aggregator/full_pass_worker.hpp"
 #include "litamin2/aggregator/patch_queue.hpp"
 
 #include <atomic>
@@ -47,6 +48,9 @@ struct WorkerStatus {
   double poses_cpu_s = 0.0;
   /// ... building (the global map) and publishing the map summary.
   double summary_cpu_s = 0.0;
+  /// Full passes applied, and the background thread's CPU time solving them, seconds.
+  std::size_t full_passes = 0;
+  double full_pass_cpu_s = 0.0;
   /// The store failed failed (disk full, I/O error): the process must exit and be restarted.
   std::string error;
 };
@@ -77,6 +81,9 @@ class MappingWorker {
   void run();
   void process(std::vector<Keyframe>& batch);
   void publish(bool force);
+  /// Applies a solved full pass and starts the next when due (full_pass_due); at `stopping`,
+  /// waits for the one in flight and runs a last one if configured.
+  void full_pass(bool stopping);
 
   AggregatorCore& core_;
   PatchQueue& queue_;
@@ -96,6 +103,10 @@ class MappingWorker {
   bool summary_dirty_ = true;
   Clock::time_point next_poses_{};
   Clock::time_point next_summary_{};
+
+  FullPassWorker full_pass_worker_;
+  Clock::time_point last_full_pass_end_ = Clock::now();
+  double last_full_pass_s_ = 0.0;
 
   mutable std::mutex mutex_;
   WorkerStatus status_;

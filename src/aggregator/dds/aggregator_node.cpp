@@ -71,8 +71,11 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
       listener_(queue_) {
   store::StoreOptions options;
   options.synchronous_full = config_.store.synchronous_full;
+  CoreOptions core_options;
+  core_options.distribution_cache_bytes =
+      static_cast<std::size_t>(config_.store.distribution_cache_mb) << 20;
   core_ = std::make_unique<AggregatorCore>(config_.store.path, store::OpenMode::kCreateIfMissing,
-                                           config_.mapper, options, progress);
+                                           config_.mapper, options, progress, core_options);
   spdlog::info("store {}: {} keyframe(s) of {} stream(s) recovered, {} loop edge(s)",
                config_.store.path, core_->recovered(), core_->mapper().stats().streams,
                core_->mapper().loops().size());
