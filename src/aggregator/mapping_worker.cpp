@@ -68,7 +68,8 @@ void MappingWorker::full_pass(bool stopping) {
   if (stopping) full_pass_worker_.wait();
   mapping::Mapper& mapper = core_.mapper();
   auto apply = [&](const mapping::FullPassProblem& solved) {
-    busy_since_ = Clock::now().time_since_epoch().count();
+    const auto a0 = Clock::now();
+    busy_since_ = a0.time_since_epoch().count();
     try {
       core_.apply_full_pass(solved);
     } catch (const std::exception& e) {
@@ -81,7 +82,9 @@ void MappingWorker::full_pass(bool stopping) {
     }
     busy_since_ = 0;
     last_full_pass_end_ = Clock::now();
-    last_full_pass_s_ = solved.milliseconds / 1000.0;
+    // The duty cycle counts the mapping thread's copy and application (O(N) each) too.
+    last_full_pass_s_ = full_pass_copy_s_ + solved.milliseconds / 1000.0 +
+                        std::chrono::duration<double>(last_full_pass_end_ - a0).count();
     spdlog::info(
         "full pass: {} segments, {} loop edges, {} iterations, {:.1f} ms in the background",
         solved.poses.size(), solved.loop_edges, solved.result.iterations, solved.milliseconds);
@@ -103,8 +106,11 @@ void MappingWorker::full_pass(bool stopping) {
   }
   const double since = std::chrono::duration<double>(Clock::now() - last_full_pass_end_).count();
   if (!full_pass_worker_.busy() &&
-      full_pass_due(config_.full_pass, mapper.loops_since_full_pass(), since, last_full_pass_s_))
+      full_pass_due(config_.full_pass, mapper.loops_since_full_pass(), since, last_full_pass_s_)) {
+    const auto c0 = Clock::now();
     full_pass_worker_.submit(mapper.full_pass_problem());
+    full_pass_copy_s_ = std::chrono::duration<double>(Clock::now() - c0).count();
+  }
 }
 
 void MappingWorker::process(std::vector<Keyframe>& batch) {

@@ -6,7 +6,9 @@
 ///
 /// full_pass_due() is the policy: a pass when loops were checked since the last one, at most
 /// `max_duty` of one core over time (after a pass of d seconds the next starts no sooner than
-/// d (1 - max_duty) / max_duty later), and no sooner than min_interval_s after the last.
+/// d (1 - max_duty) / max_duty later), and no sooner than min_interval_s after the last. The
+/// callers count in d the mapping thread's copy and application (O(N) each) with the solve,
+/// so passes grow rarer as the map grows and their cost per keyframe stays bounded.
 
 #include "litamin2/mapping/graph_optimizer.hpp"
 

@@ -107,6 +107,7 @@ class MappingWorker {
   FullPassWorker full_pass_worker_;
   Clock::time_point last_full_pass_end_ = Clock::now();
   double last_full_pass_s_ = 0.0;
+  double full_pass_copy_s_ = 0.0;
 
   mutable std::mutex mutex_;
   WorkerStatus status_;
