@@ -1,5 +1,7 @@
 #include "litamin2/mapping/distribution_cache.hpp"
 
+#include "litamin2/core/stopwatch.hpp"
+
 #include <stdexcept>
 
 namespace litamin2::mapping {
@@ -23,7 +25,9 @@ Distributions DistributionCache::get(const KeyframeKey& key) {
                             "'/" + std::to_string(key.id));
   }
   ++stats_.misses;
+  const double t = thread_cpu_seconds();
   auto d = std::make_shared<const std::vector<Distribution>>(loader_(key));
+  stats_.load_s += thread_cpu_seconds() - t;
   insert(key, d);
   return d;
 }

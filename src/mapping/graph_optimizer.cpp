@@ -130,8 +130,10 @@ LocalOptimization GraphOptimizer::optimize_local(KeyframeGraph& graph, GraphLoop
     for (auto it = std::next(at); it != chain.end() && count < max_keyframes; ++it, ++count)
       free.insert(it->second);
   }
-  // And the graph around both ends of each new loop, local_hops edges (odometry and checked
-  // loops) deep: the correction spreads on both sides, as a full solve would spread it.
+  // And the chains around both ends of each new loop, local_hops odometry edges deep: the
+  // correction spreads on both sides. Not through checked loops: where a fleet has revisited a
+  // place many times, every keyframe has loops and their hops would reach a region as large
+  // as the map (the full pass spreads the correction further).
   std::vector<std::uint32_t> frontier;
   for (std::uint32_t i : pending) {
     frontier.push_back(loops.nodes[i].first);
@@ -152,10 +154,6 @@ LocalOptimization GraphOptimizer::optimize_local(KeyframeGraph& graph, GraphLoop
       };
       if (at != chain.begin()) visit(std::prev(at)->second);
       if (std::next(at) != chain.end()) visit(std::next(at)->second);
-      const auto it = loops.at_node.find(n);
-      if (it == loops.at_node.end()) continue;
-      for (std::uint32_t l : it->second)
-        visit(loops.nodes[l].first == n ? loops.nodes[l].second : loops.nodes[l].first);
     }
     frontier.swap(next);
   }

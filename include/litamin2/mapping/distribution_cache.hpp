@@ -27,6 +27,8 @@ struct DistributionCacheStats {
   std::size_t evictions = 0;
   std::size_t entries = 0;
   std::size_t bytes = 0;
+  /// CPU time of the calling thread in the loader (misses), seconds.
+  double load_s = 0.0;
 };
 
 class DistributionCache {

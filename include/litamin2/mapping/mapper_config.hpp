@@ -120,8 +120,9 @@ struct PoseGraphConfig {
   /// and as many after it) are free, their neighbours in the graph fixed
   /// (graph_optimizer.hpp). Its cost follows the drift corrected, not the map's size.
   int local_max_keyframes = 2000;
-  /// ... and so is every keyframe within this many edges (odometry or loop) of either end of
-  /// a new loop, so that the correction spreads on both sides.
+  /// ... and so is every keyframe within this many odometry edges of either end of a new
+  /// loop (along each end's own stream), so that the correction spreads on both sides. Not
+  /// through other loops: in a fleet's dense graph their hops would reach most of the map.
   int local_hops = 10;
   /// The full pass (Mapper::optimize_full, in the aggregator on a background thread) moves
   /// runs of this many consecutive keyframes of a stream as one rigid segment (1 = every
