@@ -30,7 +30,11 @@ AggregatorCore::AggregatorCore(const std::string& store_path, store::OpenMode mo
                                const CoreOptions& options)
     : store_(store::KeyframeStore::open(store_path, mode, store_options)),
       read_only_(mode == store::OpenMode::kReadOnly),
-      mapper_(mapper_config, make_cache(store_, options.distribution_cache_bytes)) {
+      mapper_(mapper_config, make_cache(store_, options.distribution_cache_bytes)),
+      tiles_(
+          options.tiles, mapper_config.map_voxel_size,
+          [this](mapping::TileKey key) { return store_.load_tile(key, tiles_.geometry()); },
+          options.tile_cache_bytes) {
   if (options.recovery == CoreOptions::Recovery::kReplay) {
     replay(progress);
   } else {
@@ -47,10 +51,13 @@ void AggregatorCore::replay(const Progress& progress) {
   }
   recovered_ = total;
   mapper_.optimize_full();
+  // The tiles are made again from the replayed graph: every keyframe of the map is to fuse.
+  tiles_.restore(mapper_.graph(), {}, {});
   if (!read_only_) {
     store::KeyframeStore::Batch batch(store_);
     store_.replace_loop_edges(mapper_.loops());
     store_.replace_corrected_poses(mapper_.poses());
+    store_.clear_map();
     mapper_.take_changed();
     batch.commit();
   }
@@ -79,12 +86,24 @@ void AggregatorCore::recover_from_tables(const Progress& progress) {
     return;
   }
   std::vector<mapping::KeyframeNode> nodes;
+  std::vector<std::pair<KeyframeKey, Eigen::Isometry3d>> map_poses;
   nodes.reserve(total);
-  for (auto& r : records.nodes) nodes.push_back(std::move(r.node));
+  for (auto& r : records.nodes) {
+    if (r.map_pose) map_poses.emplace_back(r.node.key, *r.map_pose);
+    nodes.push_back(std::move(r.node));
+  }
   records.nodes.clear();
   records.nodes.shrink_to_fit();
   mapper_.restore(std::move(nodes), records.loops);
   mapper_.take_changed();
+  // The tiles as committed, and the keyframes not fused at their current pose yet.
+  const mapping::KeyframeGraph& graph = mapper_.graph();
+  std::vector<std::optional<Eigen::Isometry3d>> fused(graph.size());
+  for (const auto& [key, pose] : map_poses) {
+    const std::int64_t n = graph.find(key);
+    if (n >= 0) fused[static_cast<std::size_t>(n)] = pose;
+  }
+  tiles_.restore(graph, std::move(fused), store_.load_tile_index());
   recovered_ = total;
   if (progress) progress(total, total);
 }
@@ -182,6 +201,37 @@ std::size_t AggregatorCore::apply_full_pass(const mapping::FullPassProblem& prob
   return moved;
 }
 
+MapUpdate AggregatorCore::update_map(std::size_t max_keyframes) {
+  MapUpdate out;
+  double t = thread_cpu_seconds();
+  out.keyframes = tiles_.update(mapper_.graph(), mapper_.cache(), max_keyframes);
+  double now = thread_cpu_seconds();
+  cpu_.map_fuse_s += now - t;
+  t = now;
+  // Read-only, the changed tiles stay in memory (the store's would be stale).
+  if (read_only_ || (tiles_.changed_tiles() == 0 && out.keyframes == 0)) return out;
+  const mapping::TileMap::Changes changes = tiles_.take_changes();
+  for (const auto& tile : changes.tiles) out.tiles.push_back(tile->key());
+  const mapping::KeyframeGraph& graph = mapper_.graph();
+  std::vector<std::pair<KeyframeKey, std::optional<Eigen::Isometry3d>>> poses;
+  poses.reserve(changes.nodes.size());
+  for (const auto& [n, pose] : changes.nodes) poses.emplace_back(graph.node(n).key, pose);
+  store::KeyframeStore::Batch transaction(store_);
+  store_.upsert_tiles(changes.tiles, tiles_.geometry());
+  store_.set_map_poses(poses);
+  transaction.commit();
+  cpu_.map_store_s += thread_cpu_seconds() - t;
+  return out;
+}
+
+std::vector<std::uint32_t> AggregatorCore::take_moved() {
+  std::vector<std::uint32_t> out;
+  out.swap(moved_);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 void AggregatorCore::save_changes(std::size_t first_new) {
   const std::vector<mapping::LoopEdge>& all = mapper_.loops();
   if (first_new < all.size()) {
@@ -194,6 +244,8 @@ void AggregatorCore::save_changes(std::size_t first_new) {
   for (std::uint32_t n : mapper_.take_changed()) {
     const mapping::KeyframeNode& node = graph.node(n);
     poses.push_back({node.key, node.pose, groups.at(groups.anchor_of(node.stream)).name});
+    tiles_.mark(n);
+    moved_.push_back(n);
   }
   store_.upsert_corrected_poses(poses);
 }

@@ -46,6 +46,11 @@ struct KeyframeStore::Impl {
   std::unique_ptr<Statement> distributions;
   /// UPSERT of a corrected pose.
   std::unique_ptr<Statement> upsert_pose;
+  /// Map tiles: UPSERT, DELETE, one tile's voxels; a node's map pose.
+  std::unique_ptr<Statement> upsert_tile;
+  std::unique_ptr<Statement> delete_tile;
+  std::unique_ptr<Statement> load_tile;
+  std::unique_ptr<Statement> set_map_pose;
   /// The open Batch, if any.
   std::unique_ptr<Transaction> batch;
   int version = KeyframeStore::kSchemaVersion;
@@ -199,6 +204,18 @@ KeyframeStore KeyframeStore::open(const std::string& path, OpenMode mode,
         db, impl->path,
         "INSERT INTO corrected_poses (stream, id, frame, pose) VALUES (?1, ?2, ?3, ?4) "
         "ON CONFLICT (stream, id) DO UPDATE SET frame = excluded.frame, pose = excluded.pose");
+    impl->upsert_tile = std::make_unique<Statement>(
+        db, impl->path,
+        "INSERT INTO tiles (ix, iy, keyframes, distributions, summary, voxels) "
+        "VALUES (?1, ?2, ?3, ?4, ?5, ?6) ON CONFLICT (ix, iy) DO UPDATE SET "
+        "keyframes = excluded.keyframes, distributions = excluded.distributions, "
+        "summary = excluded.summary, voxels = excluded.voxels");
+    impl->delete_tile =
+        std::make_unique<Statement>(db, impl->path, "DELETE FROM tiles WHERE ix = ?1 AND iy = ?2");
+    impl->load_tile = std::make_unique<Statement>(
+        db, impl->path, "SELECT keyframes, voxels FROM tiles WHERE ix = ?1 AND iy = ?2");
+    impl->set_map_pose = std::make_unique<Statement>(
+        db, impl->path, "UPDATE nodes SET map_pose = ?3 WHERE stream = ?1 AND id = ?2");
   }
   return KeyframeStore(std::move(impl));
 }
@@ -292,10 +309,10 @@ KeyframeStore::GraphRecords KeyframeStore::load_graph() const {
   const char* sql =
       im.version >= 2
           ? "SELECT n.stream, n.id, n.stamp_ns, n.voxel_size, n.pose, n.covariance, "
-            "n.descriptor, c.frame, c.pose FROM nodes n LEFT JOIN corrected_poses c "
+            "n.descriptor, c.frame, c.pose, n.map_pose FROM nodes n LEFT JOIN corrected_poses c "
             "ON c.stream = n.stream AND c.id = n.id"
           : "SELECT k.stream, k.id, k.stamp_ns, k.voxel_size, k.pose, k.covariance, NULL, "
-            "c.frame, c.pose FROM keyframes k LEFT JOIN corrected_poses c "
+            "c.frame, c.pose, NULL FROM keyframes k LEFT JOIN corrected_poses c "
             "ON c.stream = k.stream AND c.id = k.id";
   Statement s(im.db.get(), im.path, sql);
   while (s.step("cannot read the nodes")) {
@@ -322,6 +339,10 @@ KeyframeStore::GraphRecords KeyframeStore::load_graph() const {
         const auto corrected = column_blob(row, 8, "corrected pose");
         n.pose = decode_pose(corrected.first, corrected.second);
         rec.has_pose = true;
+      }
+      if (sqlite3_column_type(row, 9) != SQLITE_NULL) {
+        const auto fused = column_blob(row, 9, "map pose");
+        rec.map_pose = decode_pose(fused.first, fused.second);
       }
     } catch (const std::invalid_argument& e) {
       throw StoreError(im.path, "corrupt node row " + describe(n.key) + ": " + e.what());
@@ -381,67 +402,84 @@ void KeyframeStore::upsert_corrected_poses(const std::vector<CorrectedPose>& pos
   Impl::commit(tx);
 }
 
-void KeyframeStore::upsert_tiles(const std::vector<Tile>& tiles) {
+void KeyframeStore::upsert_tiles(const std::vector<std::shared_ptr<const mapping::MapTile>>& tiles,
+                                 const mapping::TileGeometry& geometry) {
   Impl& im = impl();
   im.require_writable("upsert_tiles");
   im.require_version2("upsert_tiles");
   auto tx = im.transaction();
-  Statement put(im.db.get(), im.path,
-                "INSERT INTO tiles (ix, iy, keyframes, voxels) VALUES (?1, ?2, ?3, ?4) "
-                "ON CONFLICT (ix, iy) DO UPDATE SET keyframes = excluded.keyframes, "
-                "voxels = excluded.voxels");
-  Statement erase(im.db.get(), im.path, "DELETE FROM tiles WHERE ix = ?1 AND iy = ?2");
-  for (const Tile& t : tiles) {
+  for (const auto& t : tiles) {
+    const mapping::TileKey key = t->key();
     const std::string what =
-        "cannot store tile (" + std::to_string(t.ix) + ", " + std::to_string(t.iy) + ")";
-    if (t.voxels.empty()) {
+        "cannot store tile (" + std::to_string(key.ix) + ", " + std::to_string(key.iy) + ")";
+    if (t->empty()) {
+      Statement& erase = *im.delete_tile;
       ResetOnExit reset{erase};
-      erase.bind(1, t.ix);
-      erase.bind(2, t.iy);
+      erase.bind(1, std::int64_t{key.ix});
+      erase.bind(2, std::int64_t{key.iy});
       erase.step(what);
       continue;
     }
+    const mapping::TileSummary summary = t->summary(geometry);
     std::string voxels;
     try {
-      voxels = encode_distributions(t.voxels);
+      voxels = encode_tile_voxels(t->voxels());
     } catch (const std::invalid_argument& e) {
       throw StoreError(im.path, what + ": " + e.what());
     }
+    const std::string encoded_summary = encode_tile_summary(summary);
+    Statement& put = *im.upsert_tile;
     ResetOnExit reset{put};
-    put.bind(1, t.ix);
-    put.bind(2, t.iy);
-    put.bind(3, t.keyframes);
-    put.bind_blob(4, voxels);
+    put.bind(1, std::int64_t{key.ix});
+    put.bind(2, std::int64_t{key.iy});
+    put.bind(3, t->keyframes());
+    put.bind(4, summary.distributions);
+    put.bind_blob(5, encoded_summary);
+    put.bind_blob(6, voxels);
     put.step(what);
   }
   Impl::commit(tx);
 }
 
-std::vector<KeyframeStore::Tile> KeyframeStore::load_tiles(std::int64_t ix0, std::int64_t iy0,
-                                                           std::int64_t ix1,
-                                                           std::int64_t iy1) const {
+std::optional<mapping::MapTile> KeyframeStore::load_tile(
+    mapping::TileKey key, const mapping::TileGeometry& geometry) const {
   Impl& im = impl();
-  std::vector<Tile> out;
+  if (im.version < 2) return std::nullopt;
+  const std::string what = "tile (" + std::to_string(key.ix) + ", " + std::to_string(key.iy) + ")";
+  Statement& s = *im.load_tile;
+  ResetOnExit reset{s};
+  s.bind(1, std::int64_t{key.ix});
+  s.bind(2, std::int64_t{key.iy});
+  if (!s.step("cannot read " + what)) return std::nullopt;
+  try {
+    const std::int64_t keyframes = column_int(s.get(), 0, "keyframes");
+    const auto blob = column_blob(s.get(), 1, "voxels");
+    return mapping::MapTile::restore(
+        key, keyframes, decode_tile_voxels(blob.first, blob.second, geometry.voxels.voxel_size));
+  } catch (const std::invalid_argument& e) {
+    throw StoreError(im.path, "corrupt " + what + ": " + e.what());
+  }
+}
+
+std::vector<mapping::TileSummary> KeyframeStore::load_tile_index() const {
+  Impl& im = impl();
+  std::vector<mapping::TileSummary> out;
   if (im.version < 2) return out;
   Statement s(im.db.get(), im.path,
-              "SELECT ix, iy, keyframes, voxels FROM tiles WHERE ix BETWEEN ?1 AND ?3 "
-              "AND iy BETWEEN ?2 AND ?4 ORDER BY ix, iy");
-  s.bind(1, ix0);
-  s.bind(2, iy0);
-  s.bind(3, ix1);
-  s.bind(4, iy1);
-  while (s.step("cannot read the tiles")) {
-    Tile t;
+              "SELECT ix, iy, keyframes, distributions, summary FROM tiles ORDER BY ix, iy");
+  while (s.step("cannot read the tile index")) {
+    mapping::TileSummary t;
     sqlite3_stmt* row = s.get();
     try {
-      t.ix = column_int(row, 0, "ix");
-      t.iy = column_int(row, 1, "iy");
+      t.key.ix = static_cast<std::int32_t>(column_int(row, 0, "ix"));
+      t.key.iy = static_cast<std::int32_t>(column_int(row, 1, "iy"));
       t.keyframes = column_int(row, 2, "keyframes");
-      const auto blob = column_blob(row, 3, "voxels");
-      t.voxels = decode_distributions(blob.first, blob.second, RegularizerConfig{});
+      t.distributions = column_int(row, 3, "distributions");
+      const auto blob = column_blob(row, 4, "summary");
+      decode_tile_summary(blob.first, blob.second, t);
     } catch (const std::invalid_argument& e) {
-      throw StoreError(im.path, "corrupt tile row (" + std::to_string(t.ix) + ", " +
-                                    std::to_string(t.iy) + "): " + e.what());
+      throw StoreError(im.path, "corrupt tile row (" + std::to_string(t.key.ix) + ", " +
+                                    std::to_string(t.key.iy) + "): " + e.what());
     }
     out.push_back(std::move(t));
   }
@@ -452,6 +490,40 @@ std::size_t KeyframeStore::tile_count() const {
   Impl& im = impl();
   if (im.version < 2) return 0;
   return static_cast<std::size_t>(query_int(im.db.get(), im.path, "SELECT count(*) FROM tiles"));
+}
+
+void KeyframeStore::clear_map() {
+  Impl& im = impl();
+  im.require_writable("clear_map");
+  if (im.version < 2) return;
+  auto tx = im.transaction();
+  exec(im.db.get(), im.path, "DELETE FROM tiles; UPDATE nodes SET map_pose = NULL");
+  Impl::commit(tx);
+}
+
+void KeyframeStore::set_map_poses(
+    const std::vector<std::pair<KeyframeKey, std::optional<Eigen::Isometry3d>>>& poses) {
+  Impl& im = impl();
+  im.require_writable("set_map_poses");
+  im.require_version2("set_map_poses");
+  auto tx = im.transaction();
+  Statement& s = *im.set_map_pose;
+  for (const auto& [key, pose] : poses) {
+    const std::string what = "cannot store the map pose of " + describe(key);
+    if (key.id > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+      throw StoreError(im.path, what + ": no such keyframe");
+    std::string blob;
+    if (pose) {
+      if (!pose->matrix().allFinite()) throw StoreError(im.path, what + ": non-finite pose");
+      blob = encode_pose(*pose);
+    }
+    ResetOnExit reset{s};
+    s.bind_text(1, key.stream);
+    s.bind(2, static_cast<std::int64_t>(key.id));
+    if (pose) s.bind_blob(3, blob);  // else NULL
+    s.step(what);
+  }
+  Impl::commit(tx);
 }
 
 std::vector<Keyframe> KeyframeStore::load_keyframes(const RegularizerConfig& regularizer) const {

@@ -54,7 +54,9 @@ CREATE TABLE corrected_poses (
 )sql";
 // Version 2: what a restart needs of every keyframe besides its distributions, in small rows
 // read without touching the keyframes' large BLOBs (descriptor NULL: to be made from the
-// distributions, as after a migration from version 1), and the map's persisted tiles.
+// distributions, as after a migration from version 1; map_pose: the pose the keyframe is
+// fused into the map tiles at, NULL when it is not), and the map's persisted tiles: their
+// summary first (what a restart reads), the voxel moments last.
 constexpr const char* kSchemaV2 = R"sql(
 CREATE TABLE nodes (
   stream TEXT NOT NULL,
@@ -63,6 +65,7 @@ CREATE TABLE nodes (
   voxel_size REAL NOT NULL,
   pose BLOB NOT NULL,
   covariance BLOB NOT NULL,
+  map_pose BLOB,
   descriptor BLOB,
   PRIMARY KEY (stream, id)
 );
@@ -70,6 +73,8 @@ CREATE TABLE tiles (
   ix INTEGER NOT NULL,
   iy INTEGER NOT NULL,
   keyframes INTEGER NOT NULL,
+  distributions INTEGER NOT NULL,
+  summary BLOB NOT NULL,
   voxels BLOB NOT NULL,
   PRIMARY KEY (ix, iy)
 );

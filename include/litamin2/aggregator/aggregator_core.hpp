@@ -15,10 +15,17 @@
 /// history delivers them again). Nothing is published before the commit. Duplicates (a key
 /// already known, or twice in one batch) are counted and ignored: the first patch of a key wins.
 ///
+/// The global map is kept in tiles (mapping/tile_map.hpp): ingest and full passes mark the
+/// keyframes that arrived or moved, update_map() fuses a bounded number of them into the tiles
+/// and commits the changed tiles with the poses their keyframes are fused at (one
+/// transaction), so that a restart recovers the tiles and what is still to be fused into them
+/// from the tables too.
+///
 /// Not thread-safe: one owner (the mapping thread; export runs it on its own).
 
 #include "litamin2/core/covariance_regularizer.hpp"
 #include "litamin2/mapping/mapper.hpp"
+#include "litamin2/mapping/tile_map.hpp"
 #include "litamin2/store/keyframe_store.hpp"
 
 #include <cstddef>
@@ -59,6 +66,10 @@ struct IngestCpu {
   double save_graph_s = 0.0;
   /// Applying full passes (moving the keyframes, storing the moved poses).
   double full_pass_apply_s = 0.0;
+  /// update_map(): fusing keyframes into the tiles ...
+  double map_fuse_s = 0.0;
+  /// ... and storing the changed tiles and map poses.
+  double map_store_s = 0.0;
 };
 
 struct CoreOptions {
@@ -71,6 +82,17 @@ struct CoreOptions {
   Recovery recovery = Recovery::kTables;
   /// Bytes of distributions the mapper's cache holds (0 = unbounded).
   std::size_t distribution_cache_bytes = 512u << 20;
+  /// The map tiles, and the bytes of tiles held in memory (0 = unbounded).
+  mapping::TileMapConfig tiles;
+  std::size_t tile_cache_bytes = 256u << 20;
+};
+
+/// What update_map() did.
+struct MapUpdate {
+  /// Keyframes fused into or subtracted from the tiles.
+  std::size_t keyframes = 0;
+  /// Tiles changed (stored, and to publish).
+  std::vector<mapping::TileKey> tiles;
 };
 
 class AggregatorCore {
@@ -84,6 +106,9 @@ class AggregatorCore {
                  const mapping::MapperConfig& mapper_config,
                  const store::StoreOptions& store_options = {}, const Progress& progress = {},
                  const CoreOptions& options = {});
+  // The cache and tile loaders refer to the store: not copyable, not movable.
+  AggregatorCore(const AggregatorCore&) = delete;
+  AggregatorCore& operator=(const AggregatorCore&) = delete;
 
   /// Commits the keyframes of `batch` not known yet to the store (one transaction), then adds
   /// them to the mapper in canonical order, optimises when loops were found and stores the new
@@ -93,6 +118,19 @@ class AggregatorCore {
   /// Moves the keyframes by a solved full pass (Mapper::full_pass_problem, solved elsewhere)
   /// and stores the moved poses. Returns how many keyframes moved.
   std::size_t apply_full_pass(const mapping::FullPassProblem& problem);
+
+  /// Fuses at most `max_keyframes` of the keyframes that arrived or moved into the map tiles
+  /// (0: all), then stores the changed tiles and map poses in one transaction (not when open
+  /// read-only: the tiles then change in memory only).
+  MapUpdate update_map(std::size_t max_keyframes);
+  /// Keyframes still to be fused (or moved) in the tiles.
+  std::size_t map_pending() const { return tiles_.pending(); }
+  const mapping::TileMap& tiles() const { return tiles_; }
+  mapping::TileMap& tiles() { return tiles_; }
+
+  /// Nodes (KeyframeGraph numbering) added or moved since the last call, ascending: what the
+  /// corrected-pose publication has to send again.
+  std::vector<std::uint32_t> take_moved();
 
   const mapping::Mapper& mapper() const { return mapper_; }
   mapping::Mapper& mapper() { return mapper_; }
@@ -114,6 +152,8 @@ class AggregatorCore {
   store::KeyframeStore store_;
   bool read_only_ = false;
   mapping::Mapper mapper_;
+  mapping::TileMap tiles_;
+  std::vector<std::uint32_t> moved_;
   std::size_t recovered_ = 0;
   std::size_t duplicates_ = 0;
   IngestCpu cpu_;

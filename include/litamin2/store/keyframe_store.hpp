@@ -24,12 +24,14 @@
 #include "litamin2/core/covariance_regularizer.hpp"
 #include "litamin2/core/keyframe.hpp"
 #include "litamin2/mapping/loop_edge.hpp"
+#include "litamin2/mapping/map_tile.hpp"
 #include "litamin2/mapping/mapper.hpp"
 #include "litamin2/store/store_error.hpp"
 
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -120,6 +122,8 @@ class KeyframeStore {
       /// A corrected pose was stored (node.pose; else it is the odometry pose).
       bool has_pose = false;
       std::string frame;
+      /// The pose the keyframe is fused into the map tiles at.
+      std::optional<Eigen::Isometry3d> map_pose;
     };
     std::vector<Node> nodes;
     std::vector<mapping::LoopEdge> loops;
@@ -134,20 +138,21 @@ class KeyframeStore {
   /// Inserts or replaces the corrected poses given (the others stay).
   void upsert_corrected_poses(const std::vector<CorrectedPose>& poses);
 
-  /// A map tile (tile_map.hpp): its fused distributions.
-  struct Tile {
-    std::int64_t ix = 0;
-    std::int64_t iy = 0;
-    /// Keyframes it was fused from.
-    std::int64_t keyframes = 0;
-    std::vector<Distribution> voxels;
-  };
-  /// Inserts or replaces tiles; a tile without voxels is deleted.
-  void upsert_tiles(const std::vector<Tile>& tiles);
-  /// The tiles with ix0 <= ix <= ix1 and iy0 <= iy <= iy1, ordered by (ix, iy).
-  std::vector<Tile> load_tiles(std::int64_t ix0, std::int64_t iy0, std::int64_t ix1,
-                               std::int64_t iy1) const;
+  /// Map tiles (mapping/tile_map.hpp). Inserts or replaces each tile with its summary; an
+  /// empty tile is deleted.
+  void upsert_tiles(const std::vector<std::shared_ptr<const mapping::MapTile>>& tiles,
+                    const mapping::TileGeometry& geometry);
+  /// One tile's voxels (nullopt: no such tile). Throws StoreError for a corrupt row.
+  std::optional<mapping::MapTile> load_tile(mapping::TileKey key,
+                                            const mapping::TileGeometry& geometry) const;
+  /// Every tile's summary (without reading the voxels), by key.
+  std::vector<mapping::TileSummary> load_tile_index() const;
   std::size_t tile_count() const;
+  /// Deletes every tile and map pose (the tiles are to be made again).
+  void clear_map();
+  /// Sets the poses the keyframes are fused into the tiles at (nullopt: not fused).
+  void set_map_poses(
+      const std::vector<std::pair<KeyframeKey, std::optional<Eigen::Isometry3d>>>& poses);
 
   /// Every keyframe, in canonical order (canonical_before). Distributions get their
   /// cov, shape_cov and shape_cov_inv from the stored covariance with `regularizer`.

@@ -11,6 +11,11 @@
 ///   recomputed on decoding with the caller's regulariser, as the tracker computes them.
 /// - place descriptor: uint16 rings, uint16 sectors, float32 ring_key[rings], uint8
 ///   cells[rings * sectors] (row-major by ring).
+/// - map tile voxels: 84 bytes per voxel, uint64 pack_voxel key, uint32 count, float64 sum[3],
+///   float64 sum of squares upper triangle (xx, xy, xz, yy, yz, zz), relative to the voxel's
+///   centre (the moments the tile adds and subtracts exactly; map_tile.hpp).
+/// - tile summary: float32 min_bound[3], float32 max_bound[3], then float32 x y z per sampled
+///   mean.
 ///
 /// Decoders throw std::invalid_argument with the reason when the bytes cannot be a value of
 /// the type (wrong size, non-finite pose, count out of range); the store adds which row it was.
@@ -18,6 +23,7 @@
 #include "litamin2/core/covariance_regularizer.hpp"
 #include "litamin2/core/distribution.hpp"
 #include "litamin2/core/keyframe.hpp"
+#include "litamin2/mapping/map_tile.hpp"
 #include "litamin2/mapping/place_descriptor.hpp"
 
 #include <Eigen/Geometry>
@@ -30,6 +36,7 @@ namespace litamin2::store {
 constexpr std::size_t kPoseBytes = 12 * sizeof(double);
 constexpr std::size_t kMatrix6Bytes = 36 * sizeof(double);
 constexpr std::size_t kDistributionBytes = 10 * 4;
+constexpr std::size_t kTileVoxelBytes = 8 + 4 + 9 * 8;
 
 std::string encode_pose(const Eigen::Isometry3d& pose);
 Eigen::Isometry3d decode_pose(const void* data, std::size_t size);
@@ -44,5 +51,15 @@ std::vector<Distribution> decode_distributions(const void* data, std::size_t siz
 
 std::string encode_descriptor(const mapping::PlaceDescriptor& descriptor);
 mapping::PlaceDescriptor decode_descriptor(const void* data, std::size_t size);
+
+/// Voxels with a non-positive count or non-finite sums are refused (std::invalid_argument).
+std::string encode_tile_voxels(const std::vector<mapping::MapTile::Voxel>& voxels);
+/// The voxels' origins are their centres for map voxels of edge `voxel_size`.
+std::vector<mapping::MapTile::Voxel> decode_tile_voxels(const void* data, std::size_t size,
+                                                        double voxel_size);
+
+/// The summary's bounds and sample (its key and counts are columns of their own).
+std::string encode_tile_summary(const mapping::TileSummary& summary);
+void decode_tile_summary(const void* data, std::size_t size, mapping::TileSummary& summary);
 
 }  // namespace litamin2::store
