@@ -1,16 +1,18 @@
-// litamin2-fleet-bench: the aggregator's core at fleet scale, in process and at full speed. V
-// vehicles drive a shared street grid (fleet_drive.hpp) in a cheap model of the simulator's
-// world (fleet_world.hpp), making keyframes of ~500 distributions; a generator thread feeds
-// them, one batch per second of the fleet (one keyframe of every vehicle), to the mapping
-// loop: AggregatorCore::ingest (store transaction, place search, verification, local
-// optimisation) and the background full pass (FullPassWorker), as the aggregator's mapping
-// thread runs them. The DDS ingest bench (tests/integration/aggregator_bench.sh) covers the
-// transport. Writes a JSON summary (docs/benchmarks.md).
+// litamin2-fleet-bench: the aggregator's mapping thread at fleet scale, in process and at full
+// speed. V vehicles drive a shared street grid (fleet_drive.hpp) in a cheap model of the
+// simulator's world (fleet_world.hpp), making keyframes of ~500 distributions; a generator
+// thread feeds them to the PatchQueue and the aggregator's MappingWorker runs as in the daemon:
+// AggregatorCore::ingest (store transaction, place search, verification, local optimisation),
+// the map tiles' update, the background full pass (FullPassWorker) and the publication of poses,
+// tiles and summary into a counting sink. The DDS ingest bench
+// (tests/integration/aggregator_bench.sh) covers the transport. Writes a JSON summary
+// (docs/benchmarks.md).
 
 #include "fleet_drive.hpp"
 #include "fleet_world.hpp"
 #include "litamin2/aggregator/aggregator_core.hpp"
-#include "litamin2/aggregator/full_pass_worker.hpp"
+#include "litamin2/aggregator/aggregator_sink.hpp"
+#include "litamin2/aggregator/mapping_worker.hpp"
 #include "litamin2/aggregator/patch_queue.hpp"
 #include "litamin2/core/stopwatch.hpp"
 #include "litamin2/io/trajectory.hpp"
@@ -50,6 +52,7 @@ struct Options {
   int segment_keyframes = 10;
   std::size_t cache_mb = 512;
   double full_pass_duty = 0.25;
+  int poses_chunk = 0;
   unsigned seed = 1;
   bool keep_store = false;
 };
@@ -99,6 +102,17 @@ double window_ms(const std::vector<std::pair<std::size_t, double>>& batches, std
   return n ? 1000.0 * cpu / n : 0.0;
 }
 
+/// Counts what the mapping thread publishes (the DDS writers' place).
+struct CountingSink : AggregatorSink {
+  std::size_t pose_messages = 0, pose_entries = 0, summaries = 0, tiles = 0;
+  void publish_poses(const StreamPoses& poses) override {
+    ++pose_messages;
+    pose_entries += poses.keyframes.size();
+  }
+  void publish_summary(const MapSummary&) override { ++summaries; }
+  void publish_tile(const TileOutput&) override { ++tiles; }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -117,6 +131,9 @@ int main(int argc, char** argv) {
   app.add_option("--segment-keyframes", o.segment_keyframes, "pose_graph.segment_keyframes");
   app.add_option("--cache-mb", o.cache_mb, "distribution cache, MB");
   app.add_option("--full-pass-duty", o.full_pass_duty, "full pass's share of a core (0 = none)");
+  app.add_option("--poses-chunk", o.poses_chunk,
+                 "publish.poses_chunk_keyframes (0: a stream's poses in one piece)")
+      ->check(CLI::Range(0, 10000000));
   app.add_option("--seed", o.seed, "world and fleet seed");
   app.add_flag("--keep-store", o.keep_store, "use an existing store instead of removing it");
   CLI11_PARSE(app, argc, argv);
@@ -138,8 +155,16 @@ int main(int argc, char** argv) {
   mapper.graph.odometry_covariance = mapping::OdometryCovariance::kDistance;
   CoreOptions core_options;
   core_options.distribution_cache_bytes = o.cache_mb << 20;
-  FullPassConfig full_pass;
-  full_pass.max_duty = o.full_pass_duty;
+  // The aggregator's configuration (defaults) but for the options above; no last synchronous
+  // full pass at the end (the one in flight is applied).
+  AggregatorConfig config;
+  config.mapper = mapper;
+  config.full_pass.max_duty = o.full_pass_duty;
+  config.full_pass.on_stop = false;
+  config.ingest.max_batch = o.vehicles;
+  config.publish.poses_chunk_keyframes = o.poses_chunk;
+  core_options.tiles = config.map_tiles.tiles;
+  core_options.tile_cache_bytes = static_cast<std::size_t>(config.map_tiles.cache_mb) << 20;
 
   std::fprintf(stderr, "fleet-bench: %d vehicles, %zu keyframes, world of %zu voxels, store %s\n",
                o.vehicles, o.keyframes, world.voxels(), o.store.c_str());
@@ -147,6 +172,7 @@ int main(int argc, char** argv) {
   std::map<KeyframeKey, Eigen::Isometry3d> truth;
   std::mutex truth_mutex;
   PatchQueue queue(static_cast<std::size_t>(4 * o.vehicles));
+  double distributions_total = 0.0;  // the generator's; read after it is joined
   std::thread generator([&] {
     std::vector<FleetVehicleDrive> drives;
     std::vector<std::mt19937> rngs;
@@ -167,6 +193,7 @@ int main(int argc, char** argv) {
         kf.odom_pose = d.odometry();
         kf.voxel_size = 3.0;
         kf.distributions = world.patch(d.truth(), rngs[static_cast<std::size_t>(v)]);
+        distributions_total += static_cast<double>(kf.distributions.size());
         {
           std::lock_guard lock(truth_mutex);
           truth[kf.key] = origin * d.truth();
@@ -181,70 +208,81 @@ int main(int argc, char** argv) {
   std::vector<mapping::KeyframePose> live_poses;
   std::vector<std::pair<std::size_t, double>> batches;  // (keyframes after, mapping CPU s)
   std::vector<double> loop_latency_ms;
-  double background_cpu_s = 0.0, distributions_total = 0.0;
+  double background_cpu_s = 0.0;
+  CountingSink sink;
+  std::size_t tiles = 0, map_pending = 0;
   const auto wall_start = Clock::now();
   {
     AggregatorCore core(o.store, store::OpenMode::kCreateIfMissing, mapper, {}, {}, core_options);
-    FullPassWorker worker;
-    auto last_end = Clock::now();
-    double last_duration = 0.0, copy_s = 0.0;
-    std::vector<Keyframe> batch;
+    MappingWorker worker(core, queue, sink, config);
     std::size_t next_report = 10000;
-    for (;;) {
-      batch.clear();
-      const std::size_t n = queue.pop_batch(batch, static_cast<std::size_t>(o.vehicles),
-                                            std::chrono::milliseconds(200));
-      if (n == 0 && queue.closed() && queue.size() == 0) break;
-      const double cpu0 = thread_cpu_seconds();
-      const auto t0 = Clock::now();
-      for (const Keyframe& kf : batch)
-        distributions_total += static_cast<double>(kf.distributions.size());
-      if (n > 0) {
-        const IngestResult r = core.ingest(batch);
-        keyframes += r.added;
-        if (r.new_loops > 0) {
-          const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-          for (std::size_t i = 0; i < r.new_loops; ++i) loop_latency_ms.push_back(ms);
-        }
-      }
-      // The background full pass: take a solved one back, start the next when due.
-      // A pass costs the mapping thread its copy and its application (O(N) each) besides the
-      // background solve: the duty cycle counts all three, so passes grow rarer as they grow
-      // costlier and their share per keyframe stays bounded.
-      if (auto solved = worker.take()) {
-        const auto a0 = Clock::now();
-        core.apply_full_pass(*solved);
-        background_cpu_s += solved->cpu_s;
-        last_duration = copy_s + solved->milliseconds / 1000.0 +
-                        std::chrono::duration<double>(Clock::now() - a0).count();
-        last_end = Clock::now();
-        ++full_passes;
-      }
-      if (!worker.busy() &&
-          full_pass_due(full_pass, core.mapper().loops_since_full_pass(),
-                        std::chrono::duration<double>(Clock::now() - last_end).count(),
-                        last_duration)) {
-        const auto c0 = Clock::now();
-        worker.submit(core.mapper().full_pass_problem());
-        copy_s = std::chrono::duration<double>(Clock::now() - c0).count();
-      }
-      batches.emplace_back(keyframes, thread_cpu_seconds() - cpu0);
-      if (keyframes >= next_report) {
-        next_report += keyframes < 100000 ? 10000 : 100000;
-        std::fprintf(
-            stderr, "%zu keyframes, %zu loops, %.2f ms/keyframe (last 10k), rss %.0f MB, %.0f s\n",
-            keyframes, core.mapper().loops().size(),
-            window_ms(batches, keyframes > 10000 ? keyframes - 10000 : 0, keyframes), peak_rss_mb(),
-            std::chrono::duration<double>(Clock::now() - wall_start).count());
-      }
-    }
+    IngestCpu last_in;
+    mapping::MapperCpu last_mc;
+    mapping::DistributionCacheStats last_cache;
+    mapping::MapperStats last_ms;
+    std::size_t reported_keyframes = 0;
+    double last_poses_cpu = 0.0, last_summary_cpu = 0.0, last_tiles_cpu = 0.0;
+    // On the mapping thread after each turn: its CPU, loop latencies and a report per 10k.
+    worker.observe([&](const TurnReport& turn) {
+      keyframes += turn.added;
+      batches.emplace_back(keyframes, turn.cpu_s);
+      loop_latency_ms.insert(loop_latency_ms.end(), turn.loop_latency_ms.begin(),
+                             turn.loop_latency_ms.end());
+      if (keyframes < next_report) return;
+      next_report += keyframes < 100000 ? 10000 : 100000;
+      std::fprintf(stderr,
+                   "%zu keyframes, %zu loops, %.2f ms/keyframe (last 10k), rss %.0f MB, %.0f s\n",
+                   keyframes, core.mapper().loops().size(),
+                   window_ms(batches, keyframes > 10000 ? keyframes - 10000 : 0, keyframes),
+                   peak_rss_mb(), std::chrono::duration<double>(Clock::now() - wall_start).count());
+      // Where the mapping thread's time went since the last report, ms per keyframe.
+      const IngestCpu in = core.cpu();
+      const mapping::MapperCpu mc = core.mapper().cpu();
+      const mapping::DistributionCacheStats cs = core.mapper().cache().stats();
+      const mapping::MapperStats ms = core.mapper().stats();
+      const WorkerStatus ws = worker.status();
+      const double k = 1000.0 / static_cast<double>(keyframes - reported_keyframes);
+      std::fprintf(
+          stderr,
+          "  stages ms/keyframe: store %.2f, regularize %.2f, descriptor search %.2f, "
+          "proximity %.2f, verification %.2f, local optimisation %.2f, save graph %.2f, "
+          "full pass apply %.2f, tiles fuse %.2f store %.2f, publish poses %.2f summary "
+          "%.2f tiles %.2f; cache misses %zu of %zu (loads %.2f); %zu candidates, %zu "
+          "verified; %zu tiles, %zu keyframes to fuse\n",
+          k * (in.store_s - last_in.store_s), k * (in.regularize_s - last_in.regularize_s),
+          k * (mc.descriptor_search_s - last_mc.descriptor_search_s),
+          k * (mc.proximity_s - last_mc.proximity_s),
+          k * (mc.verification_s - last_mc.verification_s),
+          k * (in.optimize_s - last_in.optimize_s), k * (in.save_graph_s - last_in.save_graph_s),
+          k * (in.full_pass_apply_s - last_in.full_pass_apply_s),
+          k * (in.map_fuse_s - last_in.map_fuse_s), k * (in.map_store_s - last_in.map_store_s),
+          k * (ws.poses_cpu_s - last_poses_cpu), k * (ws.summary_cpu_s - last_summary_cpu),
+          k * (ws.tiles_cpu_s - last_tiles_cpu), cs.misses - last_cache.misses,
+          cs.misses - last_cache.misses + cs.hits - last_cache.hits,
+          k * (cs.load_s - last_cache.load_s), ms.candidates - last_ms.candidates,
+          ms.verified - last_ms.verified, core.tiles().index().size(), core.map_pending());
+      last_ms = ms;
+      last_in = in;
+      last_mc = mc;
+      last_cache = cs;
+      last_poses_cpu = ws.poses_cpu_s;
+      last_summary_cpu = ws.summary_cpu_s;
+      last_tiles_cpu = ws.tiles_cpu_s;
+      reported_keyframes = keyframes;
+    });
+    worker.start();
     generator.join();
-    worker.wait();
-    if (auto solved = worker.take()) {
-      core.apply_full_pass(*solved);
-      background_cpu_s += solved->cpu_s;
-      ++full_passes;
+    // Ingests what is queued, applies the pass in flight, publishes what is pending.
+    worker.stop();
+    const WorkerStatus ws = worker.status();
+    if (!ws.error.empty()) {
+      std::fprintf(stderr, "error: the mapping thread failed: %s\n", ws.error.c_str());
+      return 1;
     }
+    full_passes = ws.full_passes;
+    background_cpu_s = ws.full_pass_cpu_s;
+    tiles = core.tiles().index().size();
+    map_pending = core.map_pending();
     loops = core.mapper().loops().size();
     live_poses = core.mapper().poses();
   }
@@ -317,8 +355,12 @@ int main(int argc, char** argv) {
     << ",\n  \"store_mb\": " << file_mb(o.store) << ",\n  \"restart_s\": " << restart_s
     << ",\n  \"restart_identical\": " << (restart_identical ? "true" : "false")
     << ",\n  \"ate_m\": " << ate << ",\n  \"keyframes_in_map_frame\": " << in_map
-    << ",\n  \"vehicles_in_map_frame\": " << merged.size() << ",\n  \"wall_s\": " << wall_s
-    << "\n}\n";
+    << ",\n  \"vehicles_in_map_frame\": " << merged.size() << ",\n  \"tiles\": " << tiles
+    << ",\n  \"keyframes_not_fused_at_stop\": " << map_pending
+    << ",\n  \"published\": {\"pose_messages\": " << sink.pose_messages
+    << ", \"pose_entries\": " << sink.pose_entries << ", \"summaries\": " << sink.summaries
+    << ", \"tiles\": " << sink.tiles << "}"
+    << ",\n  \"wall_s\": " << wall_s << "\n}\n";
   std::cout << j.str();
   if (!o.json.empty()) std::ofstream(o.json) << j.str();
   return 0;
