@@ -6,7 +6,7 @@
 #
 # Both record the target in a global list that cmake/install.cmake installs, so that a target
 # declared anywhere is installed: shared libraries (-DBUILD_SHARED_LIBS=ON) into <prefix>/lib,
-# tools into <prefix>/bin with an RPATH of $ORIGIN/../lib.
+# tools into <prefix>/bin with an RPATH of $ORIGIN/../lib (libraries: $ORIGIN).
 include(GNUInstallDirs)
 
 function(litamin2_add_library name)
@@ -15,7 +15,9 @@ function(litamin2_add_library name)
   target_include_directories(${name} PUBLIC
     $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_link_libraries(${name} PUBLIC ${arg_PUBLIC} PRIVATE ${arg_PRIVATE})
-  set_target_properties(${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  # A shared library finds the project libraries it needs beside itself (RUNPATH is not
+  # transitive: the tools' $ORIGIN/../lib does not reach a library's own dependencies).
+  set_target_properties(${name} PROPERTIES POSITION_INDEPENDENT_CODE ON INSTALL_RPATH "$ORIGIN")
   set_property(GLOBAL APPEND PROPERTY LITAMIN2_LIBRARIES ${name})
 endfunction()
 

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cstdlib>
 #include <fastdds/dds/log/Log.hpp>
 #include <memory>
 #include <mutex>
@@ -33,14 +34,26 @@ class SpdlogConsumer : public fdds::LogConsumer {
   }
 };
 
+/// At exit: delivers what Fast DDS's log thread still holds while spdlog is alive, then stops
+/// that thread, so that it cannot call into spdlog's logger during static destruction (seen as a
+/// segfault after main returned when a participant's teardown logged a warning).
+void stop_fastdds_log() {
+  fdds::Log::Flush();
+  fdds::Log::KillThread();
+}
+
 }  // namespace
 
 void forward_fastdds_log_to_spdlog() {
   static std::once_flag once;
   std::call_once(once, [] {
+    // Both spdlog's registry and Fast DDS's log resources exist before the exit handler is
+    // registered, so the handler runs before either is destroyed.
+    spdlog::default_logger();
     fdds::Log::ClearConsumers();
     fdds::Log::RegisterConsumer(std::make_unique<SpdlogConsumer>());
     fdds::Log::SetVerbosity(fdds::Log::Kind::Warning);
+    std::atexit(stop_fastdds_log);
   });
 }
 

@@ -21,9 +21,11 @@ bool finite(const geometry_msgs::msg::Pose& p) {
          std::isfinite(p.orientation().w());
 }
 
-bool fail(std::string* error, std::string message) {
-  if (error) *error = std::move(message);
-  return false;
+PatchConversion rejected(PatchError error, std::string message) {
+  PatchConversion out;
+  out.error = error;
+  out.message = std::move(message);
+  return out;
 }
 
 }  // namespace
@@ -52,32 +54,44 @@ litamin2::msg::MapPatch to_map_patch(const Keyframe& keyframe, const std::string
   return msg;
 }
 
-std::optional<Keyframe> from_map_patch(const litamin2::msg::MapPatch& msg, std::string* error) {
-  if (const auto why = service::stream_id_error(msg.stream_id())) {
-    fail(error, "stream id '" + msg.stream_id() + "': " + *why);
-    return std::nullopt;
+const char* to_string(PatchError error) {
+  switch (error) {
+    case PatchError::kNone:
+      return "none";
+    case PatchError::kBadStreamId:
+      return "bad_stream_id";
+    case PatchError::kNonFinitePose:
+      return "non_finite_pose";
+    case PatchError::kBadStamp:
+      return "bad_stamp";
+    case PatchError::kNonFiniteCovariance:
+      return "non_finite_covariance";
+    case PatchError::kBadVoxelSize:
+      return "bad_voxel_size";
+    case PatchError::kNonFiniteDistribution:
+      return "non_finite_distribution";
   }
+  return "unknown";
+}
+
+PatchConversion from_map_patch(const litamin2::msg::MapPatch& msg) {
+  if (const auto why = service::stream_id_error(msg.stream_id()))
+    return rejected(PatchError::kBadStreamId, "stream id '" + msg.stream_id() + "': " + *why);
   const std::string where =
       "patch " + msg.stream_id() + "/" + std::to_string(msg.keyframe_id()) + ": ";
-  if (!finite(msg.pose())) {
-    fail(error, where + "non-finite pose");
-    return std::nullopt;
-  }
-  if (msg.stamp().nanosec() >= kNsPerSecond) {
-    fail(error, where + "stamp nanosec " + std::to_string(msg.stamp().nanosec()) + " >= 1e9");
-    return std::nullopt;
-  }
+  if (!finite(msg.pose())) return rejected(PatchError::kNonFinitePose, where + "non-finite pose");
+  if (msg.stamp().nanosec() >= kNsPerSecond)
+    return rejected(PatchError::kBadStamp,
+                    where + "stamp nanosec " + std::to_string(msg.stamp().nanosec()) + " >= 1e9");
   for (double c : msg.covariance())
-    if (!std::isfinite(c)) {
-      fail(error, where + "non-finite covariance");
-      return std::nullopt;
-    }
-  if (!(std::isfinite(msg.voxel_size()) && msg.voxel_size() > 0.0f)) {
-    fail(error, where + "voxel size " + std::to_string(msg.voxel_size()) + " is not positive");
-    return std::nullopt;
-  }
+    if (!std::isfinite(c))
+      return rejected(PatchError::kNonFiniteCovariance, where + "non-finite covariance");
+  if (!(std::isfinite(msg.voxel_size()) && msg.voxel_size() > 0.0f))
+    return rejected(PatchError::kBadVoxelSize,
+                    where + "voxel size " + std::to_string(msg.voxel_size()) + " is not positive");
 
-  Keyframe kf;
+  PatchConversion out;
+  Keyframe& kf = out.keyframe;
   kf.key.stream = msg.stream_id();
   kf.key.id = msg.keyframe_id();
   kf.stamp = to_stamp(msg.stamp());
@@ -89,15 +103,14 @@ std::optional<Keyframe> from_map_patch(const litamin2::msg::MapPatch& msg, std::
   for (std::size_t i = 0; i < in.size(); ++i) {
     const auto& v = in[i];
     for (float x : v.mean())
-      if (!std::isfinite(x)) {
-        fail(error, where + "distribution " + std::to_string(i) + " has a non-finite mean");
-        return std::nullopt;
-      }
+      if (!std::isfinite(x))
+        return rejected(PatchError::kNonFiniteDistribution,
+                        where + "distribution " + std::to_string(i) + " has a non-finite mean");
     for (float x : v.cov())
-      if (!std::isfinite(x)) {
-        fail(error, where + "distribution " + std::to_string(i) + " has a non-finite covariance");
-        return std::nullopt;
-      }
+      if (!std::isfinite(x))
+        return rejected(
+            PatchError::kNonFiniteDistribution,
+            where + "distribution " + std::to_string(i) + " has a non-finite covariance");
     Distribution& d = kf.distributions[i];
     d.mean = Eigen::Vector3d(v.mean()[0], v.mean()[1], v.mean()[2]);
     const auto& c = v.cov();
@@ -109,7 +122,7 @@ std::optional<Keyframe> from_map_patch(const litamin2::msg::MapPatch& msg, std::
     d.cov.computeInverseWithCheck(inverse, invertible);
     d.shape_cov_inv = invertible ? inverse : Eigen::Matrix3d::Identity();
   }
-  return kf;
+  return out;
 }
 
 }  // namespace litamin2::dds

@@ -74,15 +74,50 @@ nav_msgs::msg::Odometry to_odometry(const Eigen::Isometry3d& pose, const Matrix6
   return msg;
 }
 
-OdometrySample from_odometry(const nav_msgs::msg::Odometry& msg) {
-  OdometrySample sample;
+const char* to_string(OdometryError error) {
+  switch (error) {
+    case OdometryError::kNone:
+      return "none";
+    case OdometryError::kBadPose:
+      return "bad_pose";
+    case OdometryError::kNonFiniteCovariance:
+      return "non_finite_covariance";
+    case OdometryError::kBadStamp:
+      return "bad_stamp";
+  }
+  return "unknown";
+}
+
+OdometryConversion from_odometry(const nav_msgs::msg::Odometry& msg) {
+  OdometryConversion out;
+  const auto reject = [&](OdometryError error, std::string message) {
+    out.error = error;
+    out.message = std::move(message);
+    return out;
+  };
+  const geometry_msgs::msg::Pose& p = msg.pose().pose();
+  const double v[] = {p.position().x(),    p.position().y(),    p.position().z(),
+                      p.orientation().x(), p.orientation().y(), p.orientation().z(),
+                      p.orientation().w()};
+  for (double x : v)
+    if (!std::isfinite(x)) return reject(OdometryError::kBadPose, "non-finite pose");
+  if (p.orientation().x() == 0.0 && p.orientation().y() == 0.0 && p.orientation().z() == 0.0 &&
+      p.orientation().w() == 0.0)
+    return reject(OdometryError::kBadPose, "zero quaternion");
+  for (double c : msg.pose().covariance())
+    if (!std::isfinite(c))
+      return reject(OdometryError::kNonFiniteCovariance, "non-finite pose covariance");
+  if (msg.header().stamp().nanosec() >= 1'000'000'000u)
+    return reject(OdometryError::kBadStamp,
+                  "stamp nanosec " + std::to_string(msg.header().stamp().nanosec()) + " >= 1e9");
+  OdometrySample& sample = out.sample;
   sample.stamp = to_stamp(msg.header().stamp());
   sample.frame_id = msg.header().frame_id();
   sample.child_frame_id = msg.child_frame_id();
-  sample.pose = from_pose_msg(msg.pose().pose());
+  sample.pose = from_pose_msg(p);
   sample.ros_covariance = from_row_major(msg.pose().covariance());
   sample.left_covariance = left_covariance_from_ros(msg.pose().covariance(), sample.pose);
-  return sample;
+  return out;
 }
 
 }  // namespace litamin2::dds

@@ -142,28 +142,13 @@ CloudConversion from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
   return out;
 }
 
-CloudError from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
-                            const CloudConversionOptions& options, CloudConversion& out) {
-  out.error = CloudError::kNone;
-  out.message.clear();
-  out.cloud.points.clear();
-  out.cloud.intensities.clear();
-  out.non_finite = 0;
+namespace {
 
-  const std::uint64_t width = msg.width();
-  const std::uint64_t height = msg.height();
+/// Finds x, y, z (required, FLOAT32/FLOAT64) and intensity (optional, any numeric type) in the
+/// message's fields and checks that each fits in point_step.
+CloudError find_fields(const sensor_msgs::msg::PointCloud2& msg, std::array<FieldSpec, 4>& specs,
+                       CloudConversion& out) {
   const std::uint64_t point_step = msg.point_step();
-  const std::uint64_t row_step = msg.row_step();
-  // Each factor is < 2^32, so these products cannot overflow 64 bits.
-  const std::uint64_t total = width * height;
-  out.total_points = static_cast<std::size_t>(total);
-  if (msg.header().stamp().nanosec() >= 1'000'000'000u)
-    return fail(
-        out, CloudError::kBadStamp,
-        "header stamp nanosec " + std::to_string(msg.header().stamp().nanosec()) + " >= 1e9");
-
-  // Fields: x, y, z required (FLOAT32/FLOAT64), intensity optional (any numeric type).
-  std::array<FieldSpec, 4> specs{{{"x"}, {"y"}, {"z"}, {"intensity"}}};
   for (const auto& field : msg.fields()) {
     for (std::size_t k = 0; k < specs.size(); ++k) {
       FieldSpec& spec = specs[k];
@@ -205,7 +190,18 @@ CloudError from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
       return fail(out, CloudError::kMissingField, std::string("no field '") + specs[k].name + "'");
     }
   }
+  return CloudError::kNone;
+}
 
+/// Checks the message's extent: rows of at least width * point_step bytes, exactly height rows
+/// of data, at most options.max_points points.
+CloudError check_extent(const sensor_msgs::msg::PointCloud2& msg,
+                        const CloudConversionOptions& options, CloudConversion& out) {
+  const std::uint64_t width = msg.width();
+  const std::uint64_t height = msg.height();
+  const std::uint64_t point_step = msg.point_step();
+  const std::uint64_t row_step = msg.row_step();
+  // Each factor is < 2^32, so these products cannot overflow 64 bits.
   if (row_step < width * point_step) {
     return fail(out, CloudError::kBadRowStep,
                 "row_step " + std::to_string(row_step) + " < width " + std::to_string(width) +
@@ -218,52 +214,64 @@ CloudError from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
                     std::to_string(row_step) + " * height " + std::to_string(height) + " = " +
                     std::to_string(expected));
   }
+  const std::uint64_t total = width * height;
   if (options.max_points > 0 && total > options.max_points) {
     return fail(out, CloudError::kTooManyPoints,
                 std::to_string(total) + " points > limit " + std::to_string(options.max_points));
   }
-  if (total == 0) return CloudError::kNone;
+  return CloudError::kNone;
+}
 
-  const bool swap = msg.is_bigendian() != host_is_big_endian();
-  const bool with_intensity = options.read_intensity && specs[3].found;
+/// The common case (native float32 x, y, z; intensity not wanted): written in place, with no
+/// per-point capacity checks or datatype switches.
+void read_float_xyz(const sensor_msgs::msg::PointCloud2& msg, const std::array<FieldSpec, 4>& specs,
+                    CloudConversion& out) {
+  const std::uint64_t width = msg.width(), height = msg.height();
+  const std::uint64_t point_step = msg.point_step(), row_step = msg.row_step();
   auto& points = out.cloud.points;
-  auto& intensities = out.cloud.intensities;
-  points.reserve(static_cast<std::size_t>(total));
-  if (with_intensity) intensities.reserve(static_cast<std::size_t>(total));
-
+  points.resize(static_cast<std::size_t>(width * height));
+  Eigen::Vector3f* next = points.data();
+  const std::size_t ox = specs[0].offset, oy = specs[1].offset, oz = specs[2].offset;
   const std::uint8_t* data = msg.data().data();
-  const bool fast = !swap && specs[0].datatype == kFloat32 && specs[1].datatype == kFloat32 &&
-                    specs[2].datatype == kFloat32;
-  if (fast && !with_intensity) {
-    // The common case (native float32 x, y, z; intensity not wanted): write in place, no
-    // per-point capacity checks or datatype switches.
-    points.resize(static_cast<std::size_t>(total));
-    Eigen::Vector3f* next = points.data();
-    const std::size_t ox = specs[0].offset, oy = specs[1].offset, oz = specs[2].offset;
-    for (std::uint64_t row = 0; row < height; ++row) {
-      const std::uint8_t* p = data + row * row_step;
-      for (std::uint64_t col = 0; col < width; ++col, p += point_step) {
-        float x, y, z;
-        std::memcpy(&x, p + ox, 4);
-        std::memcpy(&y, p + oy, 4);
-        std::memcpy(&z, p + oz, 4);
-        // x - x is 0 for finite x and NaN for NaN or +-Inf: one test for all three.
-        if ((x - x) + (y - y) + (z - z) == 0.0f) {
-          *next++ = Eigen::Vector3f(x, y, z);
-        } else {
-          ++out.non_finite;
-        }
+  for (std::uint64_t row = 0; row < height; ++row) {
+    const std::uint8_t* p = data + row * row_step;
+    for (std::uint64_t col = 0; col < width; ++col, p += point_step) {
+      float x, y, z;
+      std::memcpy(&x, p + ox, 4);
+      std::memcpy(&y, p + oy, 4);
+      std::memcpy(&z, p + oz, 4);
+      // x - x is 0 for finite x and NaN for NaN or +-Inf: one test for all three.
+      if ((x - x) + (y - y) + (z - z) == 0.0f) {
+        *next++ = Eigen::Vector3f(x, y, z);
+      } else {
+        ++out.non_finite;
       }
     }
-    points.resize(static_cast<std::size_t>(next - points.data()));
-    return CloudError::kNone;
   }
+  points.resize(static_cast<std::size_t>(next - points.data()));
+}
+
+/// Any layout: float32 or float64 coordinates in either byte order, and the intensity if
+/// `with_intensity` (any numeric type; non-finite intensities become 0).
+void read_any_layout(const sensor_msgs::msg::PointCloud2& msg,
+                     const std::array<FieldSpec, 4>& specs, bool with_intensity,
+                     CloudConversion& out) {
+  const std::uint64_t width = msg.width(), height = msg.height();
+  const std::uint64_t point_step = msg.point_step(), row_step = msg.row_step();
+  const bool swap = msg.is_bigendian() != host_is_big_endian();
+  const bool native_float = !swap && specs[0].datatype == kFloat32 &&
+                            specs[1].datatype == kFloat32 && specs[2].datatype == kFloat32;
+  auto& points = out.cloud.points;
+  auto& intensities = out.cloud.intensities;
+  points.reserve(static_cast<std::size_t>(width * height));
+  if (with_intensity) intensities.reserve(static_cast<std::size_t>(width * height));
+  const std::uint8_t* data = msg.data().data();
   for (std::uint64_t row = 0; row < height; ++row) {
     const std::uint8_t* row_ptr = data + row * row_step;
     for (std::uint64_t col = 0; col < width; ++col) {
       const std::uint8_t* p = row_ptr + col * point_step;
       Eigen::Vector3f v;
-      if (fast) {
+      if (native_float) {
         std::memcpy(&v.x(), p + specs[0].offset, 4);
         std::memcpy(&v.y(), p + specs[1].offset, 4);
         std::memcpy(&v.z(), p + specs[2].offset, 4);
@@ -282,6 +290,36 @@ CloudError from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
         intensities.push_back(std::isfinite(i) ? i : 0.0f);
       }
     }
+  }
+}
+
+}  // namespace
+
+CloudError from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
+                            const CloudConversionOptions& options, CloudConversion& out) {
+  out.error = CloudError::kNone;
+  out.message.clear();
+  out.cloud.points.clear();
+  out.cloud.intensities.clear();
+  out.non_finite = 0;
+  out.total_points = static_cast<std::size_t>(static_cast<std::uint64_t>(msg.width()) *
+                                              static_cast<std::uint64_t>(msg.height()));
+  if (msg.header().stamp().nanosec() >= 1'000'000'000u)
+    return fail(
+        out, CloudError::kBadStamp,
+        "header stamp nanosec " + std::to_string(msg.header().stamp().nanosec()) + " >= 1e9");
+  std::array<FieldSpec, 4> specs{{{"x"}, {"y"}, {"z"}, {"intensity"}}};
+  if (find_fields(msg, specs, out) != CloudError::kNone) return out.error;
+  if (check_extent(msg, options, out) != CloudError::kNone) return out.error;
+  if (out.total_points == 0) return CloudError::kNone;
+  const bool with_intensity = options.read_intensity && specs[3].found;
+  const bool native_float = msg.is_bigendian() == host_is_big_endian() &&
+                            specs[0].datatype == kFloat32 && specs[1].datatype == kFloat32 &&
+                            specs[2].datatype == kFloat32;
+  if (native_float && !with_intensity) {
+    read_float_xyz(msg, specs, out);
+  } else {
+    read_any_layout(msg, specs, with_intensity, out);
   }
   return CloudError::kNone;
 }

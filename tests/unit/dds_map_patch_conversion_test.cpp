@@ -42,9 +42,9 @@ TEST(MapPatchConversion, KeyframeRoundTrip) {
   EXPECT_EQ(msg.stamp().sec(), 1'700'000'000);
   EXPECT_EQ(msg.stamp().nanosec(), 123'456'789u);
   EXPECT_EQ(msg.frame_id(), "fleet/car_1/odom");
-  std::string error;
-  const auto back = dds::from_map_patch(msg, &error);
-  ASSERT_TRUE(back) << error;
+  const dds::PatchConversion converted = dds::from_map_patch(msg);
+  ASSERT_TRUE(converted.ok()) << converted.message;
+  const Keyframe* back = &converted.keyframe;
   EXPECT_EQ(back->key, kf.key);
   EXPECT_EQ(back->stamp.nanoseconds, kf.stamp.nanoseconds);
   EXPECT_EQ(back->voxel_size, kf.voxel_size);
@@ -67,9 +67,9 @@ TEST(MapPatchConversion, KeyframeRoundTrip) {
 
 TEST(MapPatchConversion, MessageRoundTrip) {
   const litamin2::msg::MapPatch msg = dds::to_map_patch(sample_keyframe(), "odom");
-  const auto kf = dds::from_map_patch(msg);
-  ASSERT_TRUE(kf);
-  const litamin2::msg::MapPatch again = dds::to_map_patch(*kf, "odom");
+  const dds::PatchConversion converted = dds::from_map_patch(msg);
+  ASSERT_TRUE(converted.ok());
+  const litamin2::msg::MapPatch again = dds::to_map_patch(converted.keyframe, "odom");
   EXPECT_EQ(again.distributions(), msg.distributions());
   EXPECT_EQ(again.stamp(), msg.stamp());
   EXPECT_EQ(again.pose().position(), msg.pose().position());
@@ -82,30 +82,33 @@ TEST(MapPatchConversion, MessageRoundTrip) {
 TEST(MapPatchConversion, RejectsBadPatches) {
   const litamin2::msg::MapPatch good = dds::to_map_patch(sample_keyframe(), "odom");
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  auto rejected = [](const litamin2::msg::MapPatch& msg, const std::string& expected) {
-    std::string error;
-    EXPECT_FALSE(dds::from_map_patch(msg, &error));
-    EXPECT_NE(error.find(expected), std::string::npos) << error;
+  auto rejected = [](const litamin2::msg::MapPatch& msg, dds::PatchError error,
+                     const std::string& expected) {
+    const dds::PatchConversion result = dds::from_map_patch(msg);
+    EXPECT_EQ(result.error, error) << dds::to_string(result.error);
+    EXPECT_FALSE(result.ok());
+    EXPECT_NE(result.message.find(expected), std::string::npos) << result.message;
   };
   auto m = good;
   m.stream_id("1bad");
-  rejected(m, "stream id '1bad'");
+  rejected(m, dds::PatchError::kBadStreamId, "stream id '1bad'");
   m = good;
   m.pose().position().x(std::nan(""));
-  rejected(m, "non-finite pose");
+  rejected(m, dds::PatchError::kNonFinitePose, "non-finite pose");
   m = good;
   m.covariance()[3] = std::numeric_limits<double>::infinity();
-  rejected(m, "non-finite covariance");
+  rejected(m, dds::PatchError::kNonFiniteCovariance, "non-finite covariance");
   m = good;
   m.voxel_size(0.0f);
-  rejected(m, "voxel size");
+  rejected(m, dds::PatchError::kBadVoxelSize, "voxel size");
   m = good;
   m.distributions()[7].mean()[1] = nan;
-  rejected(m, "distribution 7 has a non-finite mean");
+  rejected(m, dds::PatchError::kNonFiniteDistribution, "distribution 7 has a non-finite mean");
   m = good;
   m.distributions()[3].cov()[5] = nan;
-  rejected(m, "distribution 3 has a non-finite covariance");
+  rejected(m, dds::PatchError::kNonFiniteDistribution,
+           "distribution 3 has a non-finite covariance");
   m = good;
   m.stamp().nanosec(1'000'000'000u);
-  rejected(m, "nanosec");
+  rejected(m, dds::PatchError::kBadStamp, "nanosec");
 }

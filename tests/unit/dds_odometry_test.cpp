@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <random>
 
 #include "litamin2/core/so3.hpp"
@@ -107,7 +109,9 @@ TEST(DdsOdometry, MessageRoundTrip) {
   EXPECT_DOUBLE_EQ(msg.pose().pose().position().x(), 10.0);
   EXPECT_DOUBLE_EQ(msg.twist().covariance()[0], -1.0);
   EXPECT_DOUBLE_EQ(msg.twist().covariance()[35], -1.0);
-  const OdometrySample sample = from_odometry(msg);
+  const OdometryConversion converted = from_odometry(msg);
+  ASSERT_TRUE(converted.ok()) << converted.message;
+  const OdometrySample& sample = converted.sample;
   EXPECT_EQ(sample.stamp.nanoseconds, 1'234'500'000'000);
   EXPECT_EQ(sample.frame_id, "car1/odom");
   EXPECT_EQ(sample.child_frame_id, "car1");
@@ -121,6 +125,28 @@ TEST(DdsOdometry, MessageRoundTrip) {
 TEST(DdsOdometry, ZeroCovarianceStaysZero) {
   const auto msg = to_odometry(some_pose(), Matrix6d::Zero(), Stamp{}, "odom", "base");
   for (double v : msg.pose().covariance()) EXPECT_EQ(v, 0.0);
+}
+
+TEST(DdsOdometry, RejectsBadMessages) {
+  const auto good = to_odometry(some_pose(), random_covariance(3), Stamp{5}, "odom", "base");
+  ASSERT_TRUE(from_odometry(good).ok());
+  auto m = good;
+  m.pose().pose().position().y(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(from_odometry(m).error, OdometryError::kBadPose);
+  m = good;
+  m.pose().pose().orientation().x(0.0);
+  m.pose().pose().orientation().y(0.0);
+  m.pose().pose().orientation().z(0.0);
+  m.pose().pose().orientation().w(0.0);
+  EXPECT_EQ(from_odometry(m).error, OdometryError::kBadPose);
+  EXPECT_NE(from_odometry(m).message.find("zero quaternion"), std::string::npos);
+  m = good;
+  m.pose().covariance()[7] = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(from_odometry(m).error, OdometryError::kNonFiniteCovariance);
+  m = good;
+  m.header().stamp().nanosec(1'000'000'000u);
+  EXPECT_EQ(from_odometry(m).error, OdometryError::kBadStamp);
+  EXPECT_STREQ(to_string(OdometryError::kBadStamp), "bad_stamp");
 }
 
 }  // namespace

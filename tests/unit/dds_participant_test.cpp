@@ -2,7 +2,11 @@
 /// loopback-only profile (built-in and XML): traffic stays on 127.0.0.1 / shared memory.
 
 #include <gtest/gtest.h>
+#include <spdlog/sinks/ringbuffer_sink.h>
+#include <spdlog/spdlog.h>
+
 #include <unistd.h>
+#include <fastdds/dds/log/Log.hpp>
 
 #include <chrono>
 #include <thread>
@@ -195,9 +199,21 @@ TEST(DdsParticipant, XmlLoopbackProfileTalksToBuiltinLoopback) {
 }
 
 TEST(DdsParticipant, LogForwardingIsIdempotent) {
+  // Fast DDS's errors reach spdlog's default logger exactly once, however often forwarding is
+  // installed (a second console consumer or a second forwarder would duplicate them).
+  auto sink = std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(64);
+  const auto previous = spdlog::default_logger();
+  spdlog::set_default_logger(std::make_shared<spdlog::logger>("test", sink));
   forward_fastdds_log_to_spdlog();
   forward_fastdds_log_to_spdlog();
-  SUCCEED();
+  EPROSIMA_LOG_ERROR(LITAMIN2_TEST, "forwarding marker 7f3a");
+  eprosima::fastdds::dds::Log::Flush();
+  spdlog::set_default_logger(previous);
+  int forwarded = 0;
+  for (const std::string& line : sink->last_formatted())
+    if (line.find("fastdds [LITAMIN2_TEST] forwarding marker 7f3a") != std::string::npos)
+      ++forwarded;
+  EXPECT_EQ(forwarded, 1);
 }
 
 }  // namespace

@@ -51,7 +51,31 @@ struct OdometrySample {
   Matrix6d ros_covariance = Matrix6d::Zero();
 };
 
-/// Reads an Odometry message (for subscribers and tests).
-OdometrySample from_odometry(const nav_msgs::msg::Odometry& msg);
+/// Why an Odometry message was rejected.
+enum class OdometryError {
+  kNone = 0,
+  /// The pose has a NaN or +-Inf, or its quaternion is zero.
+  kBadPose,
+  /// The pose covariance has a NaN or +-Inf.
+  kNonFiniteCovariance,
+  /// header.stamp.nanosec >= 1e9.
+  kBadStamp,
+};
+
+/// Short name of an error ("bad_pose", ...), for counters and logs.
+const char* to_string(OdometryError error);
+
+/// Result of from_odometry (the shape of CloudConversion and PatchConversion).
+struct OdometryConversion {
+  OdometryError error = OdometryError::kNone;
+  /// Human-readable reason when error != kNone.
+  std::string message;
+  /// The message's content (unspecified when rejected).
+  OdometrySample sample;
+  bool ok() const { return error == OdometryError::kNone; }
+};
+
+/// Reads and checks an Odometry message. Never throws for bad input.
+OdometryConversion from_odometry(const nav_msgs::msg::Odometry& msg);
 
 }  // namespace litamin2::dds

@@ -69,7 +69,8 @@ ParticipantPtr create_participant(
 
 /// Replaces Fast DDS's console log consumers by one forwarding every entry to spdlog's default
 /// logger (Error -> error, Warning -> warn, Info -> debug; logger name "fastdds" in the
-/// message), and sets Fast DDS's verbosity to Warning. Idempotent and thread-safe.
+/// message), and sets Fast DDS's verbosity to Warning. At exit, Fast DDS's log is flushed and
+/// its thread stopped before spdlog is destroyed. Idempotent and thread-safe.
 void forward_fastdds_log_to_spdlog();
 
 }  // namespace litamin2::dds

@@ -18,7 +18,7 @@ MapCorrection map_correction(const StreamPoses& poses) {
 
 nav_msgs::msg::Odometry to_map_odometry(const nav_msgs::msg::Odometry& odom,
                                         const MapCorrection& correction) {
-  const dds::OdometrySample in = dds::from_odometry(odom);
+  const dds::OdometrySample in = dds::from_odometry(odom).sample;
   const Eigen::Isometry3d& c = correction.correction;
   const Eigen::Isometry3d pose = c * in.pose;
   // C exp(xi) T = exp(Ad_C xi) C T: the left-update covariance moves by Ad_C, the same map as

@@ -23,7 +23,6 @@ std::uint64_t ns(double seconds) {
 void PatchListener::on_data_available(fdds::DataReader* reader) {
   litamin2::msg::MapPatch msg;
   fdds::SampleInfo info;
-  std::string error;
   double t = thread_cpu_seconds();
   for (;;) {
     const bool taken = reader->take_next_sample(&msg, &info) == ReturnCode_t::RETCODE_OK;
@@ -33,19 +32,20 @@ void PatchListener::on_data_available(fdds::DataReader* reader) {
     t = taken_at;
     if (!info.valid_data) continue;
     ++received_;
-    std::optional<Keyframe> keyframe = dds::from_map_patch(msg, &error);
+    dds::PatchConversion patch = dds::from_map_patch(msg);
     const double converted_at = thread_cpu_seconds();
     convert_cpu_ns_ += ns(converted_at - t);
     t = converted_at;
-    if (!keyframe) {
+    if (!patch.ok()) {
       ++rejected_;
       if (const auto suppressed = bad_patch_log_.allow())
-        spdlog::warn("dropped a bad map patch: {}{}", error,
+        spdlog::warn("dropped a bad map patch ({}): {}{}", dds::to_string(patch.error),
+                     patch.message,
                      *suppressed ? fmt::format(" (and {} more since the last report)", *suppressed)
                                  : std::string());
       continue;
     }
-    if (!queue_.push(std::move(*keyframe))) return;  // shutting down
+    if (!queue_.push(std::move(patch.keyframe))) return;  // shutting down
   }
 }
 
