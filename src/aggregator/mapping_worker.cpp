@@ -125,9 +125,13 @@ bool MappingWorker::full_pass(bool stopping, TurnReport* report) {
     publish_poses(report);
     last_full_pass_end_ = Clock::now();
     last_full_pass_s_ = full_pass_copy_s_ + solved.milliseconds / 1000.0 + seconds_since(a0);
-    spdlog::info(
-        "full pass: {} segments, {} loop edges, {} iterations, {:.1f} ms in the background",
-        solved.poses.size(), solved.loop_edges, solved.result.iterations, solved.milliseconds);
+    if (solved.result.diverged) {
+      spdlog::warn("full pass: {} segments: the solution ran off, refused", solved.poses.size());
+    } else {
+      spdlog::info(
+          "full pass: {} segments, {} loop edges, {} iterations, {:.1f} ms in the background",
+          solved.poses.size(), solved.loop_edges, solved.result.iterations, solved.milliseconds);
+    }
     applied = true;
     std::lock_guard lock(mutex_);
     ++status_.full_passes;

@@ -261,6 +261,7 @@ LocalOptimization GraphOptimizer::optimize_local(KeyframeGraph& graph, GraphLoop
     used_loops = kept;
     result = solve(poses);
   }
+  if (result.diverged) ++stats.diverged;
   if (result.usable) {
     for (std::size_t k = 0; k < problem.nodes.size(); ++k)
       if (!problem.fixed[k]) graph.set_pose(problem.nodes[k], poses[k]);

@@ -138,13 +138,34 @@ PoseGraphResult optimize_pose_graph(std::vector<Eigen::Isometry3d>& poses,
   result.final_cost = summary.final_cost;
   result.usable = summary.IsSolutionUsable();
   if (!result.usable) return result;
+  std::vector<Eigen::Isometry3d> solved(n, Eigen::Isometry3d::Identity());
   for (std::size_t i = 0; i < n; ++i) {
-    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    pose.linear() = q[i].normalized().toRotationMatrix();
-    pose.translation() = t[i];
-    poses[i] = pose;
+    solved[i].linear() = q[i].normalized().toRotationMatrix();
+    solved[i].translation() = t[i];
   }
+  if (!within_reach(poses, solved, edges)) {
+    result.usable = false;
+    result.diverged = true;
+    return result;
+  }
+  poses = std::move(solved);
   return result;
+}
+
+bool within_reach(const std::vector<Eigen::Isometry3d>& before,
+                  const std::vector<Eigen::Isometry3d>& after,
+                  const std::vector<PoseGraphEdge>& edges) {
+  if (before.size() != after.size()) return false;
+  double reach = 0.0;
+  for (const PoseGraphEdge& e : edges) {
+    reach += e.relative.translation().norm() + e.from_offset.translation().norm() +
+             e.to_offset.translation().norm();
+  }
+  for (std::size_t i = 0; i < after.size(); ++i) {
+    if (!after[i].matrix().allFinite()) return false;
+    if ((after[i].translation() - before[i].translation()).norm() > reach) return false;
+  }
+  return true;
 }
 
 }  // namespace litamin2::mapping

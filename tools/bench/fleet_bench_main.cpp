@@ -248,7 +248,7 @@ int main(int argc, char** argv) {
           "proximity %.2f, verification %.2f, local optimisation %.2f, save graph %.2f, "
           "full pass apply %.2f, tiles fuse %.2f store %.2f, publish poses %.2f summary "
           "%.2f tiles %.2f; cache misses %zu of %zu (loads %.2f); %zu candidates, %zu "
-          "verified; %zu tiles, %zu keyframes to fuse\n",
+          "verified, %zu local solves refused (ran off); %zu tiles, %zu keyframes to fuse\n",
           k * (in.store_s - last_in.store_s), k * (in.regularize_s - last_in.regularize_s),
           k * (mc.descriptor_search_s - last_mc.descriptor_search_s),
           k * (mc.proximity_s - last_mc.proximity_s),
@@ -260,7 +260,8 @@ int main(int argc, char** argv) {
           k * (ws.tiles_cpu_s - last_tiles_cpu), cs.misses - last_cache.misses,
           cs.misses - last_cache.misses + cs.hits - last_cache.hits,
           k * (cs.load_s - last_cache.load_s), ms.candidates - last_ms.candidates,
-          ms.verified - last_ms.verified, core.tiles().index().size(), core.map_pending());
+          ms.verified - last_ms.verified, ms.diverged, core.tiles().index().size(),
+          core.map_pending());
       last_ms = ms;
       last_in = in;
       last_mc = mc;

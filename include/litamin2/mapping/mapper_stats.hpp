@@ -18,6 +18,8 @@ struct MapperStats {
   std::size_t optimizations = 0;
   /// Full passes applied (Mapper::apply_full_pass).
   std::size_t full_passes = 0;
+  /// Local optimisations whose solution ran off (pose_graph.hpp, within_reach): refused.
+  std::size_t diverged = 0;
 };
 
 /// CPU time (of the calling thread) spent in the mapper's stages since construction, seconds.
