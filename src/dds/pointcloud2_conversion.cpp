@@ -131,6 +131,8 @@ const char* to_string(CloudError error) {
       return "too_many_points";
     case CloudError::kBadStamp:
       return "bad_stamp";
+    case CloudError::kNonFiniteIntensity:
+      return "non_finite_intensity";
   }
   return "unknown";
 }
@@ -252,10 +254,10 @@ void read_float_xyz(const sensor_msgs::msg::PointCloud2& msg, const std::array<F
 }
 
 /// Any layout: float32 or float64 coordinates in either byte order, and the intensity if
-/// `with_intensity` (any numeric type; non-finite intensities become 0).
-void read_any_layout(const sensor_msgs::msg::PointCloud2& msg,
-                     const std::array<FieldSpec, 4>& specs, bool with_intensity,
-                     CloudConversion& out) {
+/// `with_intensity` (any numeric type; a non-finite one rejects the message).
+CloudError read_any_layout(const sensor_msgs::msg::PointCloud2& msg,
+                           const std::array<FieldSpec, 4>& specs, bool with_intensity,
+                           CloudConversion& out) {
   const std::uint64_t width = msg.width(), height = msg.height();
   const std::uint64_t point_step = msg.point_step(), row_step = msg.row_step();
   const bool swap = msg.is_bigendian() != host_is_big_endian();
@@ -287,10 +289,15 @@ void read_any_layout(const sensor_msgs::msg::PointCloud2& msg,
       points.push_back(v);
       if (with_intensity) {
         const float i = read_as_float(p + specs[3].offset, specs[3].datatype, swap);
-        intensities.push_back(std::isfinite(i) ? i : 0.0f);
+        if (!std::isfinite(i))
+          return fail(
+              out, CloudError::kNonFiniteIntensity,
+              "point " + std::to_string(row * width + col) + " has intensity " + std::to_string(i));
+        intensities.push_back(i);
       }
     }
   }
+  return CloudError::kNone;
 }
 
 }  // namespace
@@ -318,10 +325,9 @@ CloudError from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
                             specs[2].datatype == kFloat32;
   if (native_float && !with_intensity) {
     read_float_xyz(msg, specs, out);
-  } else {
-    read_any_layout(msg, specs, with_intensity, out);
+    return CloudError::kNone;
   }
-  return CloudError::kNone;
+  return read_any_layout(msg, specs, with_intensity, out);
 }
 
 sensor_msgs::msg::PointCloud2 to_pointcloud2(const PointCloud& cloud, Stamp stamp,

@@ -33,6 +33,8 @@ enum class CloudError {
   kTooManyPoints,
   /// header.stamp.nanosec >= 1e9.
   kBadStamp,
+  /// A point with finite coordinates has a NaN or +-Inf intensity (when intensities are read).
+  kNonFiniteIntensity,
 };
 
 /// Short name of an error ("missing_field", ...), for counters and logs.
@@ -41,7 +43,7 @@ const char* to_string(CloudError error);
 /// Options of from_pointcloud2.
 struct CloudConversionOptions {
   /// Clouds with more points (width * height, before dropping non-finite points) are rejected
-  /// with kTooManyPoints; 0 means no limit.
+  /// with kTooManyPoints; 0 means no limit. The daemon's limits.max_points_per_scan.
   std::size_t max_points = 5'000'000;
   /// Read the "intensity" field when present (any numeric datatype, converted to float).
   bool read_intensity = true;
@@ -53,8 +55,7 @@ struct CloudConversion {
   /// Human-readable reason when error != kNone ("row_step 100 < width 10 * point_step 16").
   std::string message;
   /// The finite points of the message, in data order (rows then columns); intensities when
-  /// the message has an intensity field and read_intensity is set (non-finite intensities
-  /// become 0). Empty when rejected.
+  /// the message has an intensity field and read_intensity is set. Empty when rejected.
   PointCloud cloud;
   /// Points dropped because a coordinate was NaN or +-Inf (after conversion to float).
   std::size_t non_finite = 0;
@@ -73,8 +74,10 @@ struct CloudConversion {
 ///  - width * height == 0 is a valid empty cloud;
 ///  - is_bigendian: values are byte-swapped when the message's byte order differs from the
 ///    host's (not rejected);
-///  - points with a NaN/Inf coordinate are dropped and counted in `non_finite`; is_dense is
-///    ignored.
+///  - points with a NaN/Inf coordinate are dropped and counted in `non_finite` (the "no
+///    return" points of organised clouds); is_dense is ignored;
+///  - a point with finite coordinates and a NaN/Inf intensity rejects the message
+///    (kNonFiniteIntensity): it is not repaired to 0.
 /// Never throws for bad input (only std::bad_alloc can escape), never reads out of bounds.
 CloudConversion from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
                                  const CloudConversionOptions& options = {});
