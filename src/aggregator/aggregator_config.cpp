@@ -28,8 +28,10 @@ void validate(const AggregatorConfig& config) {
   check_topic(t.keyframe_poses, "topics.keyframe_poses");
   check_topic(t.map_summary, "topics.map_summary");
   check_topic(t.status, "topics.status");
-  const std::set<std::string> distinct = {t.map_patches, t.keyframe_poses, t.map_summary, t.status};
-  if (distinct.size() != 4) throw ConfigError("topics: the four topics must be different");
+  check_topic(t.map_tiles, "topics.map_tiles");
+  const std::set<std::string> distinct = {t.map_patches, t.keyframe_poses, t.map_summary, t.status,
+                                          t.map_tiles};
+  if (distinct.size() != 5) throw ConfigError("topics: the five topics must be different");
   if (!t.odometry.empty()) {
     check_pattern(t.odometry, "topics.odometry");
     check_pattern(t.map_odometry, "topics.map_odometry");
@@ -42,6 +44,15 @@ void validate(const AggregatorConfig& config) {
   } catch (const ConfigError& e) {
     throw ConfigError(std::string("mapper: ") + e.what());
   }
+  try {
+    mapping::validate(config.map_tiles.tiles);
+  } catch (const ConfigError& e) {
+    throw ConfigError(std::string("map_tiles.") + e.what());
+  }
+  if (config.map_tiles.max_keyframes_per_turn < 1)
+    throw ConfigError("map_tiles.max_keyframes_per_turn: must be >= 1");
+  if (config.publish.poses_chunk_keyframes < 0)
+    throw ConfigError("publish.poses_chunk_keyframes: must be >= 0");
   const auto& levels = service::kLogLevels;
   if (std::find(levels.begin(), levels.end(), std::string_view(config.log_level)) == levels.end())
     throw ConfigError("log_level: '" + config.log_level + "' is not a log level");

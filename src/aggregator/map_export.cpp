@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <system_error>
 
@@ -68,16 +69,48 @@ std::vector<std::string> write_trajectories(const std::string& dir, const Stream
   return {stem + "_kitti.txt", stem + "_tum.txt"};
 }
 
+std::vector<Distribution> map_in_box(mapping::TileMap& tiles,
+                                     const std::optional<ExportOptions::Box>& box,
+                                     std::size_t* tiles_read) {
+  mapping::TileKey lo{std::numeric_limits<std::int32_t>::min(),
+                      std::numeric_limits<std::int32_t>::min()};
+  mapping::TileKey hi{std::numeric_limits<std::int32_t>::max(),
+                      std::numeric_limits<std::int32_t>::max()};
+  if (box) tiles.geometry().tile_range(box->min_x, box->min_y, box->max_x, box->max_y, lo, hi);
+  std::vector<mapping::TileKey> keys;
+  for (const auto& [key, summary] : tiles.index()) {
+    if (key.ix >= lo.ix && key.ix <= hi.ix && key.iy >= lo.iy && key.iy <= hi.iy)
+      keys.push_back(key);
+  }
+  std::vector<Distribution> out;
+  for (const mapping::TileKey& key : keys) {
+    for (Distribution& d : tiles.tile(key)->distributions(tiles.geometry())) {
+      if (box && (d.mean.x() < box->min_x || d.mean.x() > box->max_x || d.mean.y() < box->min_y ||
+                  d.mean.y() > box->max_y))
+        continue;
+      out.push_back(std::move(d));
+    }
+  }
+  if (tiles_read) *tiles_read = keys.size();
+  return out;
+}
+
 ExportResult export_store(const ExportOptions& options) {
-  const AggregatorCore core(options.store, store::OpenMode::kReadOnly, options.mapper, {},
-                            options.progress);
+  CoreOptions core_options;
+  core_options.recovery =
+      options.replay ? CoreOptions::Recovery::kReplay : CoreOptions::Recovery::kTables;
+  core_options.tiles = options.tiles;
+  AggregatorCore core(options.store, store::OpenMode::kReadOnly, options.mapper, {},
+                      options.progress, core_options);
   const mapping::Mapper& mapper = core.mapper();
   ExportResult result;
   result.keyframes = mapper.stats().keyframes;
   result.streams = mapper.stats().streams;
   result.loops = mapper.loops().size();
   if (!options.map_ply.empty()) {
-    const std::vector<Distribution> map = mapper.global_map();
+    // The keyframes the aggregator had not fused into the tiles yet (all, replayed), in memory.
+    core.update_map(0);
+    const std::vector<Distribution> map = map_in_box(core.tiles(), options.box, &result.tiles);
     result.voxels = map.size();
     write_map_ply(options.map_ply, map);
     result.files.push_back(options.map_ply);

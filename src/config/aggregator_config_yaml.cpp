@@ -29,6 +29,7 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
     topics.read("map_patches", config.topics.map_patches);
     topics.read("keyframe_poses", config.topics.keyframe_poses);
     topics.read("map_summary", config.topics.map_summary);
+    topics.read("map_tiles", config.topics.map_tiles);
     topics.read("status", config.topics.status);
     topics.read("odometry", config.topics.odometry);
     topics.read("map_odometry", config.topics.map_odometry);
@@ -39,6 +40,7 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
     YamlSection store(root.child("store"), "store");
     store.read("path", config.store.path);
     store.read("synchronous_full", config.store.synchronous_full);
+    store.read_range("distribution_cache_mb", config.store.distribution_cache_mb, 1, 1'000'000);
     store.reject_unknown();
   }
 
@@ -53,7 +55,10 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
     YamlSection publish(root.child("publish"), "publish");
     publish.read_range("poses_period_s", config.publish.poses_period_s, 0.0, 3600.0);
     publish.read_range("summary_period_s", config.publish.summary_period_s, 0.0, 86400.0);
+    publish.read_range("poses_chunk_keyframes", config.publish.poses_chunk_keyframes, 0,
+                       10'000'000);
     publish.read_range("summary_max_means", config.publish.summary_max_means, 0, 10'000'000);
+    publish.read_range("tiles_period_s", config.publish.tiles_period_s, 0.0, 86400.0);
     publish.read_range("status_period_s", config.publish.status_period_s, 0.01, 3600.0);
     publish.reject_unknown();
   }
@@ -62,6 +67,24 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
   config.mapper = read_section("mapper", [&] {
     return mapping::mapper_config_from_yaml(mapper ? mapper : YAML::Node(YAML::NodeType::Map));
   });
+  {
+    YamlSection tiles(root.child("map_tiles"), "map_tiles");
+    mapping::TileMapConfig& t = config.map_tiles.tiles;
+    tiles.read_range("tile_size", t.tile_size, 1.0, 100'000.0);
+    tiles.read_range("move_threshold_m", t.move_threshold_m, 0.0, 1000.0);
+    tiles.read_range("move_threshold_deg", t.move_threshold_deg, 0.0, 180.0);
+    tiles.read_range("max_keyframes_per_turn", config.map_tiles.max_keyframes_per_turn, 1,
+                     10'000'000);
+    tiles.read_range("cache_mb", config.map_tiles.cache_mb, 1, 1'000'000);
+    tiles.reject_unknown();
+  }
+  {
+    YamlSection full_pass(root.child("full_pass"), "full_pass");
+    full_pass.read_range("max_duty", config.full_pass.max_duty, 0.0, 1.0);
+    full_pass.read_range("min_interval_s", config.full_pass.min_interval_s, 0.0, 86400.0);
+    full_pass.read("on_stop", config.full_pass.on_stop);
+    full_pass.reject_unknown();
+  }
   config.watchdog = service::watchdog_config_from_yaml(root.child("watchdog"), 86400.0);
   service::read_log_level(root, config.log_level);
   root.reject_unknown();

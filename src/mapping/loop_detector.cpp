@@ -15,25 +15,26 @@ constexpr double kDegToRad = M_PI / 180.0;
 
 }  // namespace
 
-std::optional<LoopEdge> LoopDetector::detect(const MapperEntry& query, const MapperEntries& entries,
-                                             const StreamGroups& groups, MapperStats& stats,
-                                             MapperCpu& cpu) const {
+std::optional<LoopEdge> LoopDetector::detect(std::uint32_t query,
+                                             const std::vector<Distribution>& distributions,
+                                             const KeyframeGraph& graph, DistributionCache& cache,
+                                             MapperStats& stats, MapperCpu& cpu) const {
   // The nearest keyframe by pose estimate first, then the descriptor's candidate.
-  std::vector<Candidate> candidates;
+  std::vector<LoopCandidate> candidates;
   double t = thread_cpu_seconds();
-  if (auto c = proximity_candidate(query, entries, groups)) candidates.push_back(*c);
+  if (auto c = proximity_candidate(query, graph)) candidates.push_back(*c);
   double now = thread_cpu_seconds();
   cpu.proximity_s += now - t;
   t = now;
   // The descriptor's candidate may be the same keyframe: its yaw is still another start.
-  if (auto c = descriptor_candidate(query, entries, groups)) candidates.push_back(*c);
+  if (auto c = descriptor_candidate(query, graph)) candidates.push_back(*c);
   now = thread_cpu_seconds();
   cpu.descriptor_search_s += now - t;
   t = now;
-  for (const auto& [candidate, initial] : candidates) {
+  for (const LoopCandidate& candidate : candidates) {
     ++stats.candidates;
-    const VoxelMap submap = submap_of(*candidate, entries, groups);
-    const LoopVerification v = verify_loop(query.keyframe.distributions, submap, initial,
+    const VoxelMap submap = submap_of(candidate.node, graph, cache);
+    const LoopVerification v = verify_loop(distributions, submap, candidate.initial,
                                            config_.verification, M_PI / config_.place.sectors);
     now = thread_cpu_seconds();
     cpu.verification_s += now - t;
@@ -44,8 +45,8 @@ std::optional<LoopEdge> LoopDetector::detect(const MapperEntry& query, const Map
     }
     ++stats.verified;
     LoopEdge edge;
-    edge.from = candidate->keyframe.key;
-    edge.to = query.keyframe.key;
+    edge.from = graph.node(candidate.node).key;
+    edge.to = graph.node(query).key;
     edge.relative = v.relative;
     edge.fitness = v.fitness;
     edge.rmse = v.rmse;
@@ -60,88 +61,105 @@ std::optional<LoopEdge> LoopDetector::detect(const MapperEntry& query, const Map
   return std::nullopt;
 }
 
-bool LoopDetector::eligible(const MapperEntry& query, const MapperEntry& candidate,
-                            const StreamGroups& groups) const {
-  if (candidate.keyframe.key.stream != query.keyframe.key.stream) return true;
-  const StreamGroups::Stream& stream = groups.at(query.keyframe.key.stream);
-  const double gap = std::abs(stream.path_length.at(query.keyframe.key.id) -
-                              stream.path_length.at(candidate.keyframe.key.id));
-  return gap >= config_.place.min_travel_gap;
+bool LoopDetector::eligible(const KeyframeNode& query, std::uint32_t candidate,
+                            const KeyframeGraph& graph) const {
+  const KeyframeNode& c = graph.node(candidate);
+  if (&c == &query) return false;
+  if (c.stream != query.stream) return true;
+  return std::abs(query.path_length - c.path_length) >= config_.place.min_travel_gap;
 }
 
-std::optional<LoopDetector::Candidate> LoopDetector::proximity_candidate(
-    const MapperEntry& query, const MapperEntries& entries, const StreamGroups& groups) const {
+std::optional<LoopCandidate> LoopDetector::proximity_candidate(std::uint32_t query,
+                                                               const KeyframeGraph& graph) const {
   const double radius = config_.place.proximity_radius;
   if (radius <= 0.0) return std::nullopt;
-  const std::string group = groups.anchor_of(query.keyframe.key.stream);
-  const MapperEntry* best = nullptr;
+  const KeyframeNode& q = graph.node(query);
+  const StreamGroups& groups = graph.groups();
+  const std::uint32_t group = groups.anchor_of(q.stream);
+  std::int64_t best = -1;
   double best_sq = radius * radius;
-  // The group's streams' entries, in key order (streams by name, then ids).
-  for (const auto& [name, stream] : groups.streams()) {
-    if (groups.anchor_of(name) != group) continue;
-    for (auto it = entries.lower_bound(KeyframeKey{name, 0});
-         it != entries.end() && it->first.stream == name; ++it) {
-      const MapperEntry& entry = it->second;
-      if (&entry == &query || !eligible(query, entry, groups)) continue;
-      const double d_sq = (entry.pose.translation() - query.pose.translation()).squaredNorm();
-      if (d_sq < best_sq) {
-        best_sq = d_sq;
-        best = &entry;
-      }
+  // Strictly nearer wins; at equal distance the first by key, as the linear scan (streams by
+  // name, then ids) finds it.
+  auto consider = [&](std::uint32_t n) {
+    const KeyframeNode& entry = graph.node(n);
+    if (groups.anchor_of(entry.stream) != group || !eligible(q, n, graph)) return;
+    const double d_sq = (entry.pose.translation() - q.pose.translation()).squaredNorm();
+    if (d_sq < best_sq || (best >= 0 && d_sq == best_sq &&
+                           entry.key < graph.node(static_cast<std::uint32_t>(best)).key)) {
+      best_sq = d_sq;
+      best = n;
     }
+  };
+  if (config_.place.search == PlaceSearch::kLinear) {
+    for (const auto& [name, s] : groups.by_name()) {
+      if (groups.anchor_of(s) != group) continue;
+      for (const auto& [id, n] : groups.at(s).nodes) consider(n);
+    }
+  } else {
+    graph.grid().visit_near(q.pose.translation(), radius, consider);
   }
-  if (!best) return std::nullopt;
-  return std::make_pair(best, best->pose.inverse() * query.pose);
+  if (best < 0) return std::nullopt;
+  const KeyframeNode& b = graph.node(static_cast<std::uint32_t>(best));
+  return LoopCandidate{static_cast<std::uint32_t>(best), b.pose.inverse() * q.pose};
 }
 
-std::optional<LoopDetector::Candidate> LoopDetector::descriptor_candidate(
-    const MapperEntry& query, const MapperEntries& entries, const StreamGroups& groups) const {
+std::optional<LoopCandidate> LoopDetector::descriptor_candidate(std::uint32_t query,
+                                                                const KeyframeGraph& graph) const {
   const PlaceRecognitionConfig& pc = config_.place;
-  std::vector<std::pair<double, const MapperEntry*>> shortlist;
-  for (const auto& [key, entry] : entries) {
-    if (&entry == &query || !eligible(query, entry, groups)) continue;
-    shortlist.emplace_back(ring_key_distance(query.descriptor, entry.descriptor), &entry);
+  const KeyframeNode& q = graph.node(query);
+  auto before = [&](std::uint32_t a, std::uint32_t b) {
+    return graph.node(a).key < graph.node(b).key;
+  };
+  std::vector<std::uint32_t> shortlist;
+  if (pc.search == PlaceSearch::kLinear) {
+    std::vector<std::pair<double, std::uint32_t>> all;
+    for (const auto& [key, n] : graph.by_key()) {
+      if (!eligible(q, n, graph)) continue;
+      all.emplace_back(ring_key_distance(q.descriptor, graph.node(n).descriptor), n);
+    }
+    const std::size_t keep = std::min<std::size_t>(pc.ring_key_candidates, all.size());
+    std::partial_sort(
+        all.begin(), all.begin() + keep, all.end(), [&](const auto& a, const auto& b) {
+          return a.first < b.first || (a.first == b.first && before(a.second, b.second));
+        });
+    for (std::size_t i = 0; i < keep; ++i) shortlist.push_back(all[i].second);
+  } else {
+    shortlist = graph.ring_keys().nearest(
+        q.descriptor.ring_key, static_cast<std::size_t>(pc.ring_key_candidates),
+        [&](std::uint32_t n) { return eligible(q, n, graph); }, before);
   }
-  const std::size_t keep = std::min<std::size_t>(pc.ring_key_candidates, shortlist.size());
-  std::partial_sort(shortlist.begin(), shortlist.begin() + keep, shortlist.end(),
-                    [](const auto& a, const auto& b) {
-                      return a.first < b.first || (a.first == b.first &&
-                                                   a.second->keyframe.key < b.second->keyframe.key);
-                    });
-  const MapperEntry* best = nullptr;
+  std::int64_t best = -1;
   DescriptorMatch best_match;
-  for (std::size_t i = 0; i < keep; ++i) {
-    const DescriptorMatch match =
-        match_descriptors(query.descriptor, shortlist[i].second->descriptor);
+  for (std::uint32_t n : shortlist) {
+    const DescriptorMatch match = match_descriptors(q.descriptor, graph.node(n).descriptor);
     if (match.distance < best_match.distance) {
       best_match = match;
-      best = shortlist[i].second;
+      best = n;
     }
   }
-  if (!best || best_match.distance > pc.max_descriptor_distance) return std::nullopt;
-  return std::make_pair(best, yaw_pose(best_match.yaw));
+  if (best < 0 || best_match.distance > pc.max_descriptor_distance) return std::nullopt;
+  return LoopCandidate{static_cast<std::uint32_t>(best), yaw_pose(best_match.yaw)};
 }
 
-VoxelMap LoopDetector::submap_of(const MapperEntry& candidate, const MapperEntries& entries,
-                                 const StreamGroups& groups) const {
+VoxelMap LoopDetector::submap_of(std::uint32_t candidate, const KeyframeGraph& graph,
+                                 DistributionCache& cache) const {
+  const KeyframeNode& c = graph.node(candidate);
   VoxelizerConfig voxels;
-  voxels.voxel_size = candidate.keyframe.voxel_size > 0.0 ? candidate.keyframe.voxel_size : 3.0;
+  voxels.voxel_size = c.voxel_size > 0.0 ? c.voxel_size : 3.0;
   voxels.min_points = 1;
   VoxelMap map(voxels, VoxelMapConfig{});
-  const StreamGroups::Stream& stream = groups.at(candidate.keyframe.key.stream);
-  auto it = stream.path_length.find(candidate.keyframe.key.id);
+  const auto& chain = graph.groups().at(c.stream).nodes;
+  auto it = chain.find(c.key.id);
   auto first = it, last = it;
-  for (int i = 0; i < config_.verification.submap_neighbours && first != stream.path_length.begin();
-       ++i)
+  for (int i = 0; i < config_.verification.submap_neighbours && first != chain.begin(); ++i)
     --first;
-  for (int i = 0;
-       i < config_.verification.submap_neighbours && std::next(last) != stream.path_length.end();
-       ++i)
+  for (int i = 0; i < config_.verification.submap_neighbours && std::next(last) != chain.end(); ++i)
     ++last;
-  const Eigen::Isometry3d to_candidate = candidate.keyframe.odom_pose.inverse();
+  const Eigen::Isometry3d to_candidate = c.odom_pose.inverse();
   for (auto k = first;; ++k) {
-    const Keyframe& kf = entries.at({candidate.keyframe.key.stream, k->first}).keyframe;
-    map.insert(moments_of(kf.distributions), to_candidate * kf.odom_pose);
+    const KeyframeNode& n = graph.node(k->second);
+    const Distributions d = cache.get(n.key);
+    map.insert(moments_of(*d), to_candidate * n.odom_pose);
     if (k == last) break;
   }
   return map;

@@ -14,6 +14,10 @@ void validate(const MapperConfig& c) {
   require(c.verification.min_fitness >= 0.0 && c.verification.min_fitness <= 1.0,
           "verification.min_fitness must be in [0, 1]");
   require(c.map_voxel_size > 0.0, "map_voxel_size must be positive");
+  require(c.place.search_spacing >= 0.0, "place_recognition.search_spacing must be >= 0");
+  require(c.graph.local_max_keyframes >= 1, "pose_graph.local_max_keyframes must be >= 1");
+  require(c.graph.local_hops >= 0, "pose_graph.local_hops must be >= 0");
+  require(c.graph.segment_keyframes >= 1, "pose_graph.segment_keyframes must be >= 1");
 }
 
 }  // namespace litamin2::mapping

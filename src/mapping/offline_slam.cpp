@@ -24,7 +24,8 @@ void OfflineSlam::add(const Tracker& tracker, const FrameResult& frame, Stamp st
 
 std::vector<Eigen::Isometry3d> OfflineSlam::corrected(
     const std::vector<Eigen::Isometry3d>& odometry) {
-  mapper_.optimize();
+  // The local optimisations ran as loops were found; one full pass settles the whole graph.
+  if (mapper_.loops_since_full_pass() > 0) mapper_.optimize_full();
   std::vector<Eigen::Isometry3d> out;
   out.reserve(odometry.size());
   for (std::size_t i = 0; i < odometry.size(); ++i) {

@@ -15,14 +15,26 @@ namespace {
 /// information, L^-1 for the covariance L L^T (diag(1 / sigma) for independent components), so
 /// that its squared norm is the Mahalanobis distance r^T C^-1 r.
 struct RelativePoseError {
-  RelativePoseError(const Eigen::Isometry3d& measured, const Matrix6d& sqrt_information)
-      : q_ab(measured.rotation()), t_ab(measured.translation()), sqrt_info(sqrt_information) {}
+  RelativePoseError(const Eigen::Isometry3d& measured, const Matrix6d& sqrt_information,
+                    const Eigen::Isometry3d& offset_a, const Eigen::Isometry3d& offset_b)
+      : q_ab(measured.rotation()),
+        t_ab(measured.translation()),
+        sqrt_info(sqrt_information),
+        q_oa(offset_a.rotation()),
+        t_oa(offset_a.translation()),
+        q_ob(offset_b.rotation()),
+        t_ob(offset_b.translation()) {}
 
   template <class T>
   bool operator()(const T* qa_ptr, const T* ta_ptr, const T* qb_ptr, const T* tb_ptr,
                   T* residual_ptr) const {
-    Eigen::Map<const Eigen::Quaternion<T>> qa(qa_ptr), qb(qb_ptr);
-    Eigen::Map<const Eigen::Matrix<T, 3, 1>> ta(ta_ptr), tb(tb_ptr);
+    Eigen::Map<const Eigen::Quaternion<T>> qna(qa_ptr), qnb(qb_ptr);
+    Eigen::Map<const Eigen::Matrix<T, 3, 1>> tna(ta_ptr), tnb(tb_ptr);
+    // The measured keyframes' poses: node * offset (the offsets are identity between keyframes).
+    const Eigen::Quaternion<T> qa = qna * q_oa.template cast<T>();
+    const Eigen::Quaternion<T> qb = qnb * q_ob.template cast<T>();
+    const Eigen::Matrix<T, 3, 1> ta = qna * t_oa.template cast<T>() + tna;
+    const Eigen::Matrix<T, 3, 1> tb = qnb * t_ob.template cast<T>() + tnb;
     const Eigen::Quaternion<T> qa_inv = qa.conjugate();
     const Eigen::Quaternion<T> q_ab_est = qa_inv * qb;
     const Eigen::Matrix<T, 3, 1> t_ab_est = qa_inv * (tb - ta);
@@ -38,6 +50,10 @@ struct RelativePoseError {
   Eigen::Quaterniond q_ab;
   Eigen::Vector3d t_ab;
   Matrix6d sqrt_info;
+  Eigen::Quaterniond q_oa;
+  Eigen::Vector3d t_oa;
+  Eigen::Quaterniond q_ob;
+  Eigen::Vector3d t_ob;
 };
 
 /// L^-1 of the edge's covariance L L^T (Cholesky), or diag(1 / sigma).
@@ -87,7 +103,7 @@ PoseGraphResult optimize_pose_graph(std::vector<Eigen::Isometry3d>& poses,
   ceres::EigenQuaternionManifold quaternion_manifold;
   for (const PoseGraphEdge& e : edges) {
     auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 6, 4, 3, 4, 3>(
-        new RelativePoseError(e.relative, sqrt_information(e)));
+        new RelativePoseError(e.relative, sqrt_information(e), e.from_offset, e.to_offset));
     ceres::LossFunction* loss = e.robust ? new ceres::CauchyLoss(config.loop_loss_scale) : nullptr;
     problem.AddResidualBlock(cost, loss, q[e.from].coeffs().data(), t[e.from].data(),
                              q[e.to].coeffs().data(), t[e.to].data());
@@ -122,13 +138,34 @@ PoseGraphResult optimize_pose_graph(std::vector<Eigen::Isometry3d>& poses,
   result.final_cost = summary.final_cost;
   result.usable = summary.IsSolutionUsable();
   if (!result.usable) return result;
+  std::vector<Eigen::Isometry3d> solved(n, Eigen::Isometry3d::Identity());
   for (std::size_t i = 0; i < n; ++i) {
-    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    pose.linear() = q[i].normalized().toRotationMatrix();
-    pose.translation() = t[i];
-    poses[i] = pose;
+    solved[i].linear() = q[i].normalized().toRotationMatrix();
+    solved[i].translation() = t[i];
   }
+  if (!within_reach(poses, solved, edges)) {
+    result.usable = false;
+    result.diverged = true;
+    return result;
+  }
+  poses = std::move(solved);
   return result;
+}
+
+bool within_reach(const std::vector<Eigen::Isometry3d>& before,
+                  const std::vector<Eigen::Isometry3d>& after,
+                  const std::vector<PoseGraphEdge>& edges) {
+  if (before.size() != after.size()) return false;
+  double reach = 0.0;
+  for (const PoseGraphEdge& e : edges) {
+    reach += e.relative.translation().norm() + e.from_offset.translation().norm() +
+             e.to_offset.translation().norm();
+  }
+  for (std::size_t i = 0; i < after.size(); ++i) {
+    if (!after[i].matrix().allFinite()) return false;
+    if ((after[i].translation() - before[i].translation()).norm() > reach) return false;
+  }
+  return true;
 }
 
 }  // namespace litamin2::mapping

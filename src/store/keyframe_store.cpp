@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -39,6 +40,58 @@ struct KeyframeStore::Impl {
   std::unique_ptr<Statement> contains;
   /// Number of keyframes.
   std::unique_ptr<Statement> count;
+  /// INSERT OR IGNORE of a node row (schema version 2).
+  std::unique_ptr<Statement> insert_node;
+  /// One keyframe's distributions.
+  std::unique_ptr<Statement> distributions;
+  /// UPSERT of a corrected pose.
+  std::unique_ptr<Statement> upsert_pose;
+  /// Map tiles: UPSERT, DELETE, one tile's voxels; a node's map pose.
+  std::unique_ptr<Statement> upsert_tile;
+  std::unique_ptr<Statement> delete_tile;
+  std::unique_ptr<Statement> load_tile;
+  std::unique_ptr<Statement> set_map_pose;
+  /// The open Batch, if any.
+  std::unique_ptr<Transaction> batch;
+  int version = KeyframeStore::kSchemaVersion;
+
+  /// A transaction of its own unless a Batch is open.
+  std::unique_ptr<Transaction> transaction() {
+    if (batch) return nullptr;
+    return std::make_unique<Transaction>(db.get(), path);
+  }
+  static void commit(std::unique_ptr<Transaction>& tx) {
+    if (tx) tx->commit();
+  }
+
+  void require_version2(const char* operation) const {
+    if (version < 2) {
+      throw StoreError(path, std::string(operation) + ": the store is of schema version " +
+                                 std::to_string(version) + " (open it for writing to upgrade it)");
+    }
+  }
+
+  void insert_node_row(const Keyframe& kf, const mapping::PlaceDescriptor& descriptor) {
+    const std::string what = "cannot store the node of keyframe " + describe(kf.key);
+    const std::string pose = encode_pose(kf.odom_pose);
+    const std::string covariance = encode_matrix6(kf.covariance);
+    std::string d;
+    try {
+      d = encode_descriptor(descriptor);
+    } catch (const std::invalid_argument& e) {
+      throw StoreError(path, what + ": " + e.what());
+    }
+    Statement& s = *insert_node;
+    ResetOnExit reset{s};
+    s.bind_text(1, kf.key.stream);
+    s.bind(2, static_cast<std::int64_t>(kf.key.id));
+    s.bind(3, kf.stamp.nanoseconds);
+    s.bind(4, kf.voxel_size);
+    s.bind_blob(5, pose);
+    s.bind_blob(6, covariance);
+    s.bind_blob(7, d);
+    s.step(what);
+  }
 
   void require_writable(const char* operation) const {
     if (read_only) throw StoreError(path, std::string(operation) + ": the store is open read-only");
@@ -111,6 +164,8 @@ KeyframeStore KeyframeStore::open(const std::string& path, OpenMode mode,
   sqlite3* db = impl->db.get();
   sqlite3_busy_timeout(db, options.busy_timeout_ms);
   if (create) create_schema(db, path);
+  if (!impl->read_only) migrate_schema(db, path);
+  impl->version = schema_version(db, path);
   if (!impl->read_only) {
     // WAL is a property of the file (it persists); setting it again is a no-op. It lets readers
     // work while a writer commits and makes a commit one append to the log.
@@ -138,6 +193,30 @@ KeyframeStore KeyframeStore::open(const std::string& path, OpenMode mode,
   impl->contains = std::make_unique<Statement>(
       db, impl->path, "SELECT 1 FROM keyframes WHERE stream = ?1 AND id = ?2");
   impl->count = std::make_unique<Statement>(db, impl->path, "SELECT count(*) FROM keyframes");
+  impl->distributions = std::make_unique<Statement>(
+      db, impl->path, "SELECT distributions FROM keyframes WHERE stream = ?1 AND id = ?2");
+  if (impl->version >= 2) {
+    impl->insert_node = std::make_unique<Statement>(
+        db, impl->path,
+        "INSERT OR IGNORE INTO nodes (stream, id, stamp_ns, voxel_size, pose, covariance, "
+        "descriptor) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)");
+    impl->upsert_pose = std::make_unique<Statement>(
+        db, impl->path,
+        "INSERT INTO corrected_poses (stream, id, frame, pose) VALUES (?1, ?2, ?3, ?4) "
+        "ON CONFLICT (stream, id) DO UPDATE SET frame = excluded.frame, pose = excluded.pose");
+    impl->upsert_tile = std::make_unique<Statement>(
+        db, impl->path,
+        "INSERT INTO tiles (ix, iy, keyframes, distributions, summary, voxels) "
+        "VALUES (?1, ?2, ?3, ?4, ?5, ?6) ON CONFLICT (ix, iy) DO UPDATE SET "
+        "keyframes = excluded.keyframes, distributions = excluded.distributions, "
+        "summary = excluded.summary, voxels = excluded.voxels");
+    impl->delete_tile =
+        std::make_unique<Statement>(db, impl->path, "DELETE FROM tiles WHERE ix = ?1 AND iy = ?2");
+    impl->load_tile = std::make_unique<Statement>(
+        db, impl->path, "SELECT keyframes, voxels FROM tiles WHERE ix = ?1 AND iy = ?2");
+    impl->set_map_pose = std::make_unique<Statement>(
+        db, impl->path, "UPDATE nodes SET map_pose = ?3 WHERE stream = ?1 AND id = ?2");
+  }
   return KeyframeStore(std::move(impl));
 }
 
@@ -161,20 +240,290 @@ bool KeyframeStore::insert_keyframe(const Keyframe& keyframe) {
   return im.insert(keyframe);
 }
 
-std::size_t KeyframeStore::insert_keyframes(const std::vector<const Keyframe*>& keyframes) {
+std::size_t KeyframeStore::insert_keyframes(
+    const std::vector<const Keyframe*>& keyframes,
+    const std::vector<const mapping::PlaceDescriptor*>& descriptors) {
   Impl& im = impl();
   im.require_writable("insert_keyframes");
   if (keyframes.empty()) return 0;
-  Transaction tx(im.db.get(), im.path);
+  if (!descriptors.empty() && descriptors.size() != keyframes.size()) {
+    throw StoreError(im.path, "insert_keyframes: " + std::to_string(descriptors.size()) +
+                                  " descriptors for " + std::to_string(keyframes.size()) +
+                                  " keyframes");
+  }
+  auto tx = im.transaction();
   std::size_t inserted = 0;
   for (std::size_t i = 0; i < keyframes.size(); ++i) {
     if (keyframes[i] == nullptr) {
       throw StoreError(im.path, "insert_keyframes: null keyframe at index " + std::to_string(i));
     }
-    if (im.insert(*keyframes[i])) ++inserted;
+    if (!im.insert(*keyframes[i])) continue;
+    ++inserted;
+    if (!descriptors.empty() && descriptors[i]) im.insert_node_row(*keyframes[i], *descriptors[i]);
   }
-  tx.commit();
+  Impl::commit(tx);
   return inserted;
+}
+
+KeyframeStore::Batch::Batch(KeyframeStore& store) : store_(store) {
+  Impl& im = store.impl();
+  im.require_writable("batch");
+  if (im.batch) throw std::logic_error("KeyframeStore: a batch is open already");
+  im.batch = std::make_unique<Transaction>(im.db.get(), im.path);
+}
+
+KeyframeStore::Batch::~Batch() {
+  if (!done_) store_.impl().batch.reset();  // rolls back
+}
+
+void KeyframeStore::Batch::commit() {
+  Impl& im = store_.impl();
+  im.batch->commit();
+  im.batch.reset();
+  done_ = true;
+}
+
+std::vector<Distribution> KeyframeStore::load_distributions(
+    const KeyframeKey& key, const RegularizerConfig& regularizer) const {
+  Impl& im = impl();
+  const std::string what = "cannot read the distributions of keyframe " + describe(key);
+  if (key.id > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+    throw StoreError(im.path, what + ": no such keyframe");
+  Statement& s = *im.distributions;
+  ResetOnExit reset{s};
+  s.bind_text(1, key.stream);
+  s.bind(2, static_cast<std::int64_t>(key.id));
+  if (!s.step(what)) throw StoreError(im.path, what + ": no such keyframe");
+  try {
+    const auto blob = column_blob(s.get(), 0, "distributions");
+    return decode_distributions(blob.first, blob.second, regularizer);
+  } catch (const std::invalid_argument& e) {
+    throw StoreError(im.path, "corrupt keyframe row " + describe(key) + ": " + e.what());
+  }
+}
+
+KeyframeStore::GraphRecords KeyframeStore::load_graph() const {
+  Impl& im = impl();
+  GraphRecords out;
+  // A version-1 store opened read-only has no nodes table: the same columns of keyframes.
+  const char* sql =
+      im.version >= 2
+          ? "SELECT n.stream, n.id, n.stamp_ns, n.voxel_size, n.pose, n.covariance, "
+            "n.descriptor, c.frame, c.pose, n.map_pose FROM nodes n LEFT JOIN corrected_poses c "
+            "ON c.stream = n.stream AND c.id = n.id"
+          : "SELECT k.stream, k.id, k.stamp_ns, k.voxel_size, k.pose, k.covariance, NULL, "
+            "c.frame, c.pose, NULL FROM keyframes k LEFT JOIN corrected_poses c "
+            "ON c.stream = k.stream AND c.id = k.id";
+  Statement s(im.db.get(), im.path, sql);
+  while (s.step("cannot read the nodes")) {
+    GraphRecords::Node rec;
+    mapping::KeyframeNode& n = rec.node;
+    sqlite3_stmt* row = s.get();
+    try {
+      n.key.stream = column_text(row, 0, "stream");
+      n.key.id = column_id(row, 1, "id");
+      n.stamp.nanoseconds = column_int(row, 2, "stamp_ns");
+      n.voxel_size = column_real(row, 3, "voxel_size");
+      const auto pose = column_blob(row, 4, "pose");
+      n.odom_pose = decode_pose(pose.first, pose.second);
+      const auto covariance = column_blob(row, 5, "covariance");
+      n.covariance = decode_matrix6(covariance.first, covariance.second).cast<float>();
+      if (sqlite3_column_type(row, 6) != SQLITE_NULL) {
+        const auto d = column_blob(row, 6, "descriptor");
+        n.descriptor = decode_descriptor(d.first, d.second);
+        rec.has_descriptor = true;
+      }
+      n.pose = n.odom_pose;
+      if (sqlite3_column_type(row, 8) != SQLITE_NULL) {
+        rec.frame = column_text(row, 7, "frame");
+        const auto corrected = column_blob(row, 8, "corrected pose");
+        n.pose = decode_pose(corrected.first, corrected.second);
+        rec.has_pose = true;
+      }
+      if (sqlite3_column_type(row, 9) != SQLITE_NULL) {
+        const auto fused = column_blob(row, 9, "map pose");
+        rec.map_pose = decode_pose(fused.first, fused.second);
+      }
+    } catch (const std::invalid_argument& e) {
+      throw StoreError(im.path, "corrupt node row " + describe(n.key) + ": " + e.what());
+    }
+    out.nodes.push_back(std::move(rec));
+  }
+  out.loops = load_loop_edges();
+  return out;
+}
+
+void KeyframeStore::store_descriptors(
+    const std::vector<std::pair<KeyframeKey, const mapping::PlaceDescriptor*>>& descriptors) {
+  Impl& im = impl();
+  im.require_writable("store_descriptors");
+  im.require_version2("store_descriptors");
+  auto tx = im.transaction();
+  Statement s(im.db.get(), im.path,
+              "UPDATE nodes SET descriptor = ?3 WHERE stream = ?1 AND id = ?2");
+  for (const auto& [key, d] : descriptors) {
+    const std::string blob = encode_descriptor(*d);
+    ResetOnExit reset{s};
+    s.bind_text(1, key.stream);
+    s.bind(2, static_cast<std::int64_t>(key.id));
+    s.bind_blob(3, blob);
+    s.step("cannot store the descriptor of " + describe(key));
+  }
+  Impl::commit(tx);
+}
+
+void KeyframeStore::insert_loop_edges(const std::vector<mapping::LoopEdge>& edges) {
+  Impl& im = impl();
+  im.require_writable("insert_loop_edges");
+  auto tx = im.transaction();
+  write_loop_edges(edges);
+  Impl::commit(tx);
+}
+
+void KeyframeStore::upsert_corrected_poses(const std::vector<CorrectedPose>& poses) {
+  Impl& im = impl();
+  im.require_writable("upsert_corrected_poses");
+  im.require_version2("upsert_corrected_poses");
+  auto tx = im.transaction();
+  Statement& s = *im.upsert_pose;
+  for (const CorrectedPose& p : poses) {
+    const std::string what = "cannot store the corrected pose of " + describe(p.key);
+    if (p.key.id > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+      throw StoreError(im.path, what + ": id exceeds the largest storable id 2^63-1");
+    if (!p.pose.matrix().allFinite()) throw StoreError(im.path, what + ": non-finite pose");
+    const std::string pose = encode_pose(p.pose);
+    ResetOnExit reset{s};
+    s.bind_text(1, p.key.stream);
+    s.bind(2, static_cast<std::int64_t>(p.key.id));
+    s.bind_text(3, p.frame);
+    s.bind_blob(4, pose);
+    s.step(what);
+  }
+  Impl::commit(tx);
+}
+
+void KeyframeStore::upsert_tiles(const std::vector<std::shared_ptr<const mapping::MapTile>>& tiles,
+                                 const mapping::TileGeometry& geometry) {
+  Impl& im = impl();
+  im.require_writable("upsert_tiles");
+  im.require_version2("upsert_tiles");
+  auto tx = im.transaction();
+  for (const auto& t : tiles) {
+    const mapping::TileKey key = t->key();
+    const std::string what =
+        "cannot store tile (" + std::to_string(key.ix) + ", " + std::to_string(key.iy) + ")";
+    if (t->empty()) {
+      Statement& erase = *im.delete_tile;
+      ResetOnExit reset{erase};
+      erase.bind(1, std::int64_t{key.ix});
+      erase.bind(2, std::int64_t{key.iy});
+      erase.step(what);
+      continue;
+    }
+    const mapping::TileSummary summary = t->summary(geometry);
+    std::string voxels;
+    try {
+      voxels = encode_tile_voxels(t->voxels());
+    } catch (const std::invalid_argument& e) {
+      throw StoreError(im.path, what + ": " + e.what());
+    }
+    const std::string encoded_summary = encode_tile_summary(summary);
+    Statement& put = *im.upsert_tile;
+    ResetOnExit reset{put};
+    put.bind(1, std::int64_t{key.ix});
+    put.bind(2, std::int64_t{key.iy});
+    put.bind(3, t->keyframes());
+    put.bind(4, summary.distributions);
+    put.bind_blob(5, encoded_summary);
+    put.bind_blob(6, voxels);
+    put.step(what);
+  }
+  Impl::commit(tx);
+}
+
+std::optional<mapping::MapTile> KeyframeStore::load_tile(
+    mapping::TileKey key, const mapping::TileGeometry& geometry) const {
+  Impl& im = impl();
+  if (im.version < 2) return std::nullopt;
+  const std::string what = "tile (" + std::to_string(key.ix) + ", " + std::to_string(key.iy) + ")";
+  Statement& s = *im.load_tile;
+  ResetOnExit reset{s};
+  s.bind(1, std::int64_t{key.ix});
+  s.bind(2, std::int64_t{key.iy});
+  if (!s.step("cannot read " + what)) return std::nullopt;
+  try {
+    const std::int64_t keyframes = column_int(s.get(), 0, "keyframes");
+    const auto blob = column_blob(s.get(), 1, "voxels");
+    return mapping::MapTile::restore(
+        key, keyframes, decode_tile_voxels(blob.first, blob.second, geometry.voxels.voxel_size));
+  } catch (const std::invalid_argument& e) {
+    throw StoreError(im.path, "corrupt " + what + ": " + e.what());
+  }
+}
+
+std::vector<mapping::TileSummary> KeyframeStore::load_tile_index() const {
+  Impl& im = impl();
+  std::vector<mapping::TileSummary> out;
+  if (im.version < 2) return out;
+  Statement s(im.db.get(), im.path,
+              "SELECT ix, iy, keyframes, distributions, summary FROM tiles ORDER BY ix, iy");
+  while (s.step("cannot read the tile index")) {
+    mapping::TileSummary t;
+    sqlite3_stmt* row = s.get();
+    try {
+      t.key.ix = static_cast<std::int32_t>(column_int(row, 0, "ix"));
+      t.key.iy = static_cast<std::int32_t>(column_int(row, 1, "iy"));
+      t.keyframes = column_int(row, 2, "keyframes");
+      t.distributions = column_int(row, 3, "distributions");
+      const auto blob = column_blob(row, 4, "summary");
+      decode_tile_summary(blob.first, blob.second, t);
+    } catch (const std::invalid_argument& e) {
+      throw StoreError(im.path, "corrupt tile row (" + std::to_string(t.key.ix) + ", " +
+                                    std::to_string(t.key.iy) + "): " + e.what());
+    }
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
+std::size_t KeyframeStore::tile_count() const {
+  Impl& im = impl();
+  if (im.version < 2) return 0;
+  return static_cast<std::size_t>(query_int(im.db.get(), im.path, "SELECT count(*) FROM tiles"));
+}
+
+void KeyframeStore::clear_map() {
+  Impl& im = impl();
+  im.require_writable("clear_map");
+  if (im.version < 2) return;
+  auto tx = im.transaction();
+  exec(im.db.get(), im.path, "DELETE FROM tiles; UPDATE nodes SET map_pose = NULL");
+  Impl::commit(tx);
+}
+
+void KeyframeStore::set_map_poses(
+    const std::vector<std::pair<KeyframeKey, std::optional<Eigen::Isometry3d>>>& poses) {
+  Impl& im = impl();
+  im.require_writable("set_map_poses");
+  im.require_version2("set_map_poses");
+  auto tx = im.transaction();
+  Statement& s = *im.set_map_pose;
+  for (const auto& [key, pose] : poses) {
+    const std::string what = "cannot store the map pose of " + describe(key);
+    if (key.id > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+      throw StoreError(im.path, what + ": no such keyframe");
+    std::string blob;
+    if (pose) {
+      if (!pose->matrix().allFinite()) throw StoreError(im.path, what + ": non-finite pose");
+      blob = encode_pose(*pose);
+    }
+    ResetOnExit reset{s};
+    s.bind_text(1, key.stream);
+    s.bind(2, static_cast<std::int64_t>(key.id));
+    if (pose) s.bind_blob(3, blob);  // else NULL
+    s.step(what);
+  }
+  Impl::commit(tx);
 }
 
 std::vector<Keyframe> KeyframeStore::load_keyframes(const RegularizerConfig& regularizer) const {
@@ -227,8 +576,14 @@ bool KeyframeStore::contains(const KeyframeKey& key) const {
 void KeyframeStore::replace_loop_edges(const std::vector<mapping::LoopEdge>& edges) {
   Impl& im = impl();
   im.require_writable("replace_loop_edges");
-  Transaction tx(im.db.get(), im.path);
+  auto tx = im.transaction();
   exec(im.db.get(), im.path, "DELETE FROM loop_edges");
+  write_loop_edges(edges);
+  Impl::commit(tx);
+}
+
+void KeyframeStore::write_loop_edges(const std::vector<mapping::LoopEdge>& edges) {
+  Impl& im = impl();
   Statement s(im.db.get(), im.path,
               "INSERT INTO loop_edges (from_stream, from_id, to_stream, to_id, fitness, rmse, "
               "relative, information) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)");
@@ -257,7 +612,6 @@ void KeyframeStore::replace_loop_edges(const std::vector<mapping::LoopEdge>& edg
       throw_sqlite(im.db.get(), im.path, what);
     }
   }
-  tx.commit();
 }
 
 std::vector<mapping::LoopEdge> KeyframeStore::load_loop_edges() const {
@@ -292,7 +646,7 @@ std::vector<mapping::LoopEdge> KeyframeStore::load_loop_edges() const {
 void KeyframeStore::replace_corrected_poses(const std::vector<CorrectedPose>& poses) {
   Impl& im = impl();
   im.require_writable("replace_corrected_poses");
-  Transaction tx(im.db.get(), im.path);
+  auto tx = im.transaction();
   exec(im.db.get(), im.path, "DELETE FROM corrected_poses");
   Statement s(im.db.get(), im.path,
               "INSERT INTO corrected_poses (stream, id, frame, pose) VALUES (?1, ?2, ?3, ?4)");
@@ -315,7 +669,7 @@ void KeyframeStore::replace_corrected_poses(const std::vector<CorrectedPose>& po
       throw_sqlite(im.db.get(), im.path, what);
     }
   }
-  tx.commit();
+  Impl::commit(tx);
 }
 
 std::vector<CorrectedPose> KeyframeStore::load_corrected_poses() const {

@@ -1,6 +1,7 @@
 #include "litamin2/store/record_codec.hpp"
 
 #include "litamin2/core/value_checks.hpp"
+#include "litamin2/core/voxel_key.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -185,6 +186,115 @@ std::vector<Distribution> decode_distributions(const void* data, std::size_t siz
     p += kDistributionBytes;
   }
   return out;
+}
+
+std::string encode_descriptor(const mapping::PlaceDescriptor& d) {
+  const std::size_t cells = static_cast<std::size_t>(d.rings) * static_cast<std::size_t>(d.sectors);
+  if (d.rings < 0 || d.sectors < 0 || d.rings > 65535 || d.sectors > 65535 ||
+      d.ring_key.size() != static_cast<std::size_t>(d.rings) || d.cells.size() != cells)
+    throw std::invalid_argument("inconsistent place descriptor");
+  std::string out(4 + 4 * d.ring_key.size() + cells, '\0');
+  unsigned char* p = bytes(out);
+  p[0] = static_cast<unsigned char>(d.rings & 0xff);
+  p[1] = static_cast<unsigned char>(d.rings >> 8);
+  p[2] = static_cast<unsigned char>(d.sectors & 0xff);
+  p[3] = static_cast<unsigned char>(d.sectors >> 8);
+  p += 4;
+  for (float v : d.ring_key) {
+    put_f32(p, v);
+    p += 4;
+  }
+  std::memcpy(p, d.cells.data(), cells);
+  return out;
+}
+
+mapping::PlaceDescriptor decode_descriptor(const void* data, std::size_t size) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  if (size < 4) throw std::invalid_argument("descriptor blob too short");
+  mapping::PlaceDescriptor d;
+  d.rings = p[0] | (p[1] << 8);
+  d.sectors = p[2] | (p[3] << 8);
+  const std::size_t cells = static_cast<std::size_t>(d.rings) * static_cast<std::size_t>(d.sectors);
+  check_size("descriptor", size, 4 + 4 * static_cast<std::size_t>(d.rings) + cells);
+  p += 4;
+  d.ring_key.resize(static_cast<std::size_t>(d.rings));
+  for (float& v : d.ring_key) {
+    v = get_f32(p);
+    if (!std::isfinite(v)) throw std::invalid_argument("non-finite descriptor ring key");
+    p += 4;
+  }
+  d.cells.assign(p, p + cells);
+  return d;
+}
+
+std::string encode_tile_voxels(const std::vector<mapping::MapTile::Voxel>& voxels) {
+  std::string out(voxels.size() * kTileVoxelBytes, '\0');
+  unsigned char* p = bytes(out);
+  for (const mapping::MapTile::Voxel& v : voxels) {
+    const VoxelMoments& m = v.moments;
+    if (m.count <= 0 || !m.sum.allFinite() || !m.sum_sq.allFinite())
+      throw std::invalid_argument("a tile voxel has no points or a non-finite sum");
+    put_u64(p, v.key);
+    put_u32(p + 8, static_cast<std::uint32_t>(m.count));
+    for (int i = 0; i < 3; ++i) put_f64(p + 12 + 8 * i, m.sum(i));
+    for (int i = 0; i < 6; ++i) put_f64(p + 36 + 8 * i, m.sum_sq(i));
+    p += kTileVoxelBytes;
+  }
+  return out;
+}
+
+std::vector<mapping::MapTile::Voxel> decode_tile_voxels(const void* data, std::size_t size,
+                                                        double voxel_size) {
+  if (size % kTileVoxelBytes != 0) {
+    throw std::invalid_argument("tile voxels blob has " + std::to_string(size) +
+                                " bytes, not a multiple of " + std::to_string(kTileVoxelBytes));
+  }
+  const auto* p = static_cast<const unsigned char*>(data);
+  std::vector<mapping::MapTile::Voxel> out(size / kTileVoxelBytes);
+  for (mapping::MapTile::Voxel& v : out) {
+    v.key = get_u64(p);
+    const std::uint32_t count = get_u32(p + 8);
+    if (count == 0 || count > static_cast<std::uint32_t>(std::numeric_limits<int>::max()))
+      throw std::invalid_argument("a tile voxel has a point count " + std::to_string(count) +
+                                  " out of range");
+    VoxelMoments& m = v.moments;
+    m.count = static_cast<int>(count);
+    for (int i = 0; i < 3; ++i) m.sum(i) = get_f64(p + 12 + 8 * i);
+    for (int i = 0; i < 6; ++i) m.sum_sq(i) = get_f64(p + 36 + 8 * i);
+    if (!m.sum.allFinite() || !m.sum_sq.allFinite())
+      throw std::invalid_argument("a tile voxel holds a non-finite sum");
+    m.origin = (unpack_voxel(v.key).cast<double>() + Eigen::Vector3d::Constant(0.5)) * voxel_size;
+    p += kTileVoxelBytes;
+  }
+  return out;
+}
+
+std::string encode_tile_summary(const mapping::TileSummary& s) {
+  std::string out(4 * (6 + 3 * s.sample.size()), '\0');
+  unsigned char* p = bytes(out);
+  auto put3 = [&](const Eigen::Vector3f& v) {
+    for (int i = 0; i < 3; ++i, p += 4) put_f32(p, v(i));
+  };
+  put3(s.min_bound);
+  put3(s.max_bound);
+  for (const Eigen::Vector3f& m : s.sample) put3(m);
+  return out;
+}
+
+void decode_tile_summary(const void* data, std::size_t size, mapping::TileSummary& s) {
+  if (size < 24 || size % 12 != 0)
+    throw std::invalid_argument("tile summary blob has " + std::to_string(size) + " bytes");
+  const auto* p = static_cast<const unsigned char*>(data);
+  auto get3 = [&] {
+    Eigen::Vector3f v(get_f32(p), get_f32(p + 4), get_f32(p + 8));
+    p += 12;
+    if (!v.allFinite()) throw std::invalid_argument("tile summary holds a non-finite value");
+    return v;
+  };
+  s.min_bound = get3();
+  s.max_bound = get3();
+  s.sample.clear();
+  for (std::size_t i = 24; i < size; i += 12) s.sample.push_back(get3());
 }
 
 }  // namespace litamin2::store

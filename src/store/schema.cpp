@@ -52,7 +52,35 @@ CREATE TABLE corrected_poses (
   PRIMARY KEY (stream, id)
 );
 )sql";
-constexpr std::array<const char*, 3> kTables = {"keyframes", "loop_edges", "corrected_poses"};
+// Version 2: what a restart needs of every keyframe besides its distributions, in small rows
+// read without touching the keyframes' large BLOBs (descriptor NULL: to be made from the
+// distributions, as after a migration from version 1; map_pose: the pose the keyframe is
+// fused into the map tiles at, NULL when it is not), and the map's persisted tiles: their
+// summary first (what a restart reads), the voxel moments last.
+constexpr const char* kSchemaV2 = R"sql(
+CREATE TABLE nodes (
+  stream TEXT NOT NULL,
+  id INTEGER NOT NULL,
+  stamp_ns INTEGER NOT NULL,
+  voxel_size REAL NOT NULL,
+  pose BLOB NOT NULL,
+  covariance BLOB NOT NULL,
+  map_pose BLOB,
+  descriptor BLOB,
+  PRIMARY KEY (stream, id)
+);
+CREATE TABLE tiles (
+  ix INTEGER NOT NULL,
+  iy INTEGER NOT NULL,
+  keyframes INTEGER NOT NULL,
+  distributions INTEGER NOT NULL,
+  summary BLOB NOT NULL,
+  voxels BLOB NOT NULL,
+  PRIMARY KEY (ix, iy)
+);
+)sql";
+constexpr std::array<const char*, 5> kTables = {"keyframes", "loop_edges", "corrected_poses",
+                                                "nodes", "tiles"};
 
 std::string hex32(std::uint32_t v) {
   char buf[16];
@@ -75,7 +103,8 @@ void check_identity(const std::string& path, std::uint32_t application_id,
                          hex32(application_id) + ", a keyframe store has " +
                          hex32(KeyframeStore::kApplicationId) + ")");
   }
-  if (user_version != KeyframeStore::kSchemaVersion) {
+  if (user_version != KeyframeStore::kSchemaVersion &&
+      user_version != KeyframeStore::kOldestSchemaVersion) {
     throw StoreError(path, "keyframe store schema version " + std::to_string(user_version) +
                                (user_version > KeyframeStore::kSchemaVersion
                                     ? " is newer than this build's "
@@ -151,7 +180,9 @@ void check_is_keyframe_store(const std::string& path) {
     user_version = query_int(db.get(), path, "PRAGMA user_version");
     Statement tables(db.get(), path,
                      "SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = ?");
-    for (const char* table : kTables) {
+    const std::size_t tables_of_version = user_version >= 2 ? kTables.size() : 3;
+    for (std::size_t t = 0; t < tables_of_version; ++t) {
+      const char* table = kTables[t];
       ResetOnExit reset{tables};
       sqlite3_bind_text(tables.get(), 1, table, -1, SQLITE_STATIC);
       tables.step("cannot read the schema");
@@ -182,8 +213,25 @@ void create_schema(sqlite3* db, const std::string& path) {
     throw StoreError(path, "was initialised by another connection while being created; reopen it");
   }
   exec(db, path, kSchema);
+  exec(db, path, kSchemaV2);
   exec(db, path,
        ("PRAGMA application_id = " + std::to_string(KeyframeStore::kApplicationId)).c_str());
+  exec(db, path,
+       ("PRAGMA user_version = " + std::to_string(KeyframeStore::kSchemaVersion)).c_str());
+  tx.commit();
+}
+
+int schema_version(sqlite3* db, const std::string& path) {
+  return static_cast<int>(query_int(db, path, "PRAGMA user_version"));
+}
+
+void migrate_schema(sqlite3* db, const std::string& path) {
+  if (schema_version(db, path) != 1) return;
+  Transaction tx(db, path);
+  exec(db, path, kSchemaV2);
+  exec(db, path,
+       "INSERT INTO nodes (stream, id, stamp_ns, voxel_size, pose, covariance, descriptor) "
+       "SELECT stream, id, stamp_ns, voxel_size, pose, covariance, NULL FROM keyframes");
   exec(db, path,
        ("PRAGMA user_version = " + std::to_string(KeyframeStore::kSchemaVersion)).c_str());
   tx.commit();

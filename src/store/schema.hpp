@@ -1,7 +1,7 @@
 #pragma once
 /// The keyframe store's file format: the SQLite schema (tables keyframes, loop_edges,
-/// corrected_poses) with the store's application_id and schema version, its creation, and the
-/// checks that refuse a file that is not a keyframe store before anything writes to it.
+/// corrected_poses, nodes, tiles) with the store's application_id and schema version, its creation,
+/// and the checks that refuse a file that is not a keyframe store before anything writes to it.
 /// Private to the store.
 
 #include <cstdint>
@@ -21,5 +21,12 @@ void check_keyframe_store(const std::string& path, std::uintmax_t file_size);
 /// either an empty file or a complete store. Run in the default rollback-journal mode;
 /// the caller switches to WAL afterwards.
 void create_schema(sqlite3* db, const std::string& path);
+
+/// The file's schema version (PRAGMA user_version).
+int schema_version(sqlite3* db, const std::string& path);
+
+/// Upgrades a version-1 store to this build's version in one transaction: the nodes table
+/// (filled from the keyframes, descriptors NULL) and the tiles table. No-op on version 2.
+void migrate_schema(sqlite3* db, const std::string& path);
 
 }  // namespace litamin2::store

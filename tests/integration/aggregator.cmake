@@ -5,6 +5,8 @@
 #    uninterrupted, another is killed with SIGKILL mid-ingest, restarted and fed the rest
 #    reversed and duplicated; both stores' exports (map PLY, KITTI/TUM trajectories) must be
 #    byte-identical.
+#  - integration_aggregator_fleet_bench: litamin2-fleet-bench at small sizes, as a
+#    correctness test (loops, ATE, restart from the tables of a 20k-keyframe store).
 #  - integration_aggregator_errors: corrupt store (aggregator and export exit non-zero naming
 #    the file, bytes unchanged), bad configurations, --help/--version/--check-config.
 if(TARGET litamin2-aggregator)
@@ -22,6 +24,12 @@ if(TARGET litamin2-aggregator)
       ${CMAKE_CURRENT_BINARY_DIR}/aggregator_errors ${CMAKE_SOURCE_DIR})
   set_tests_properties(integration_aggregator_errors PROPERTIES TIMEOUT 120 RUN_SERIAL TRUE)
 
+  if(TARGET litamin2-fleet-bench)
+    add_test(NAME integration_aggregator_fleet_bench
+      COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/aggregator_fleet_bench.sh ${CMAKE_BINARY_DIR}
+        ${CMAKE_CURRENT_BINARY_DIR}/aggregator_fleet_bench)
+    set_tests_properties(integration_aggregator_fleet_bench PROPERTIES TIMEOUT 600)
+  endif()
   if(TARGET litamin2-sim)
     add_test(NAME integration_aggregator_restart
       COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/aggregator_restart.sh ${CMAKE_BINARY_DIR}

@@ -73,7 +73,14 @@ TEST(AggregatorConfig, ErrorsNameTheKey) {
   expect_error("publish: {status_period_s: abc}", "publish.status_period_s: cannot read 'abc'");
   expect_error("mapper: {map_voxel_size: -1}", "mapper.map_voxel_size: -1 is out of range");
   expect_error("mapper: {pose_graph: {bogus: 1}}", "mapper.pose_graph.bogus: unknown key");
-  expect_error("topics: {status: rt/litamin2/map_patches}", "topics: the four topics");
+  expect_error("topics: {status: rt/litamin2/map_patches}", "topics: the five topics");
+  expect_error("topics: {map_tiles: rt/litamin2/map_summary}", "topics: the five topics");
+  expect_error("map_tiles: {tile_size: 0}", "map_tiles.tile_size: 0 is out of range");
+  expect_error("map_tiles: {max_keyframes_per_turn: 0}",
+               "map_tiles.max_keyframes_per_turn: 0 is out of range");
+  expect_error("map_tiles: {tiles: 1}", "map_tiles.tiles: unknown key");
+  expect_error("publish: {poses_chunk_keyframes: -1}",
+               "publish.poses_chunk_keyframes: -1 is out of range");
   expect_error("topics: {status: 'a b'}", "topics.status: 'a b' is not a valid topic name");
   expect_error("log_level: loud", "log_level: 'loud' is not one of");
   expect_error("colour: red", "colour: unknown key");

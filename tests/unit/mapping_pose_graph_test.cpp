@@ -142,3 +142,55 @@ TEST(MappingPoseGraph, LevelPriorPullsTiltTowardsTheFirstNode) {
   EXPECT_LT(tilt_deg(with[n - 1]), 3.0);
   EXPECT_LT(tilt_deg(with[n - 1]), tilt_deg(without[n - 1]) / 3.0);
 }
+
+TEST(MappingPoseGraph, WithinReachRefusesRunawayAndNonFinitePoses) {
+  // A chain of three 10 m edges: no solution moves a node more than 30 m.
+  std::vector<Eigen::Isometry3d> before(4, Eigen::Isometry3d::Identity());
+  std::vector<PoseGraphEdge> edges;
+  for (int i = 0; i < 3; ++i) {
+    before[static_cast<std::size_t>(i + 1)] = pose_of(10.0 * (i + 1), 0, 0, 0, 0, 0);
+    PoseGraphEdge e;
+    e.from = i;
+    e.to = i + 1;
+    e.relative = pose_of(10.0, 0, 0, 0, 0, 0);
+    edges.push_back(e);
+  }
+  std::vector<Eigen::Isometry3d> after = before;
+  after[3] = pose_of(35.0, 20.0, 0, 0, 0, 0.3);  // moved 25 m: possible
+  EXPECT_TRUE(within_reach(before, after, edges));
+  after[3] = pose_of(1e6, 0, 0, 0, 0, 0);  // ran off
+  EXPECT_FALSE(within_reach(before, after, edges));
+  after[3] = before[3];
+  after[2].translation().y() = std::nan("");
+  EXPECT_FALSE(within_reach(before, after, edges));
+  EXPECT_FALSE(within_reach(before, {before[0]}, edges));
+}
+
+TEST(MappingPoseGraph, AConvergedSolveIsWithinReach) {
+  // The drift-correcting loop of LoopEdgeRemovesAccumulatedDrift's kind: a square of four
+  // 10 m edges with a 20 % scale drift, closed by a loop edge.
+  std::vector<Eigen::Isometry3d> poses;
+  std::vector<PoseGraphEdge> edges;
+  for (int i = 0; i < 5; ++i) poses.push_back(pose_of(12.0 * i, 0, 0, 0, 0, 0));
+  for (int i = 0; i < 4; ++i) {
+    PoseGraphEdge e;
+    e.from = i;
+    e.to = i + 1;
+    e.relative = pose_of(12.0, 0, 0, 0, 0, 0);
+    edges.push_back(e);
+  }
+  PoseGraphEdge loop;
+  loop.from = 0;
+  loop.to = 4;
+  loop.relative = pose_of(40.0, 0, 0, 0, 0, 0);
+  loop.robust = true;
+  edges.push_back(loop);
+  std::vector<bool> fixed(poses.size(), false);
+  fixed[0] = true;
+  const std::vector<Eigen::Isometry3d> before = poses;
+  const PoseGraphResult r = optimize_pose_graph(poses, fixed, edges, PoseGraphConfig{});
+  EXPECT_TRUE(r.usable);
+  EXPECT_FALSE(r.diverged);
+  EXPECT_LT(poses[4].translation().x(), before[4].translation().x());  // pulled in by the loop
+  EXPECT_TRUE(within_reach(before, poses, edges));
+}

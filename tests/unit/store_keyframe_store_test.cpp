@@ -513,9 +513,9 @@ TEST(KeyframeStore, OtherApplicationsAndSchemasAreRefusedAndLeftUnchanged) {
   expect_refused_unchanged(dir / "plain.db", "another application (application_id 0x00000000");
 
   std::string newer = bytes;
-  newer.replace(60, 4, std::string("\x00\x00\x00\x02", 4));
+  newer.replace(60, 4, std::string("\x00\x00\x00\x03", 4));
   write_bytes(dir / "newer.db", newer);
-  expect_refused_unchanged(dir / "newer.db", "schema version 2 is newer");
+  expect_refused_unchanged(dir / "newer.db", "schema version 3 is newer");
 
   // Our header, but a table dropped.
   write_bytes(dir / "no_table.db", bytes);

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "litamin2/core/voxel_key.hpp"
 #include "litamin2/store/record_codec.hpp"
 
 namespace {
@@ -157,3 +158,55 @@ TEST(StoreRecordCodec, NanCovarianceOfAHugeTranslationNeverComesBack) {
   far.translation().x() = 1e154;
   EXPECT_THROW(encode_pose(far), std::invalid_argument);
 }
+
+namespace {
+
+TEST(StoreRecordCodec, TileVoxelsRoundTripExactlyWithTheirCentreAsOrigin) {
+  const double voxel_size = 2.0;
+  mapping::MapTile::Voxel v;
+  v.key = pack_voxel(VoxelIndex(3, -4, 1));
+  v.moments.count = 12;
+  v.moments.sum = Eigen::Vector3d(0.1, -0.25, 1.0 / 3.0);
+  v.moments.sum_sq << 1.5, 0.01, -0.02, 2.25, 0.003, 0.125;
+  const std::string bytes = encode_tile_voxels({v});
+  ASSERT_EQ(bytes.size(), kTileVoxelBytes);
+  const auto back = decode_tile_voxels(bytes.data(), bytes.size(), voxel_size);
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_EQ(back[0].key, v.key);
+  EXPECT_EQ(back[0].moments.count, 12);
+  EXPECT_TRUE(back[0].moments.sum == v.moments.sum);
+  EXPECT_TRUE(back[0].moments.sum_sq == v.moments.sum_sq);
+  // The centre of voxel (3, -4, 1) of edge 2 m.
+  EXPECT_TRUE(back[0].moments.origin == Eigen::Vector3d(7.0, -7.0, 3.0));
+}
+
+TEST(StoreRecordCodec, BadTileVoxelsAreRejected) {
+  mapping::MapTile::Voxel v;
+  v.moments.count = 0;  // no points
+  EXPECT_THROW(encode_tile_voxels({v}), std::invalid_argument);
+  v.moments.count = 3;
+  v.moments.sum.x() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(encode_tile_voxels({v}), std::invalid_argument);
+  v.moments.sum.x() = 0.0;
+  std::string bytes = encode_tile_voxels({v});
+  EXPECT_THROW(decode_tile_voxels(bytes.data(), bytes.size() - 1, 1.0), std::invalid_argument);
+  std::memset(&bytes[8], 0, 4);  // count 0
+  EXPECT_THROW(decode_tile_voxels(bytes.data(), bytes.size(), 1.0), std::invalid_argument);
+}
+
+TEST(StoreRecordCodec, TileSummaryRoundTrips) {
+  mapping::TileSummary s;
+  s.min_bound = Eigen::Vector3f(-1.0f, -2.0f, -3.0f);
+  s.max_bound = Eigen::Vector3f(4.0f, 5.0f, 6.0f);
+  s.sample = {Eigen::Vector3f(0.5f, 0.25f, 0.125f), Eigen::Vector3f(1.0f, 2.0f, 3.0f)};
+  const std::string bytes = encode_tile_summary(s);
+  mapping::TileSummary back;
+  decode_tile_summary(bytes.data(), bytes.size(), back);
+  EXPECT_TRUE(back.min_bound == s.min_bound);
+  EXPECT_TRUE(back.max_bound == s.max_bound);
+  ASSERT_EQ(back.sample.size(), 2u);
+  EXPECT_TRUE(back.sample[1] == s.sample[1]);
+  EXPECT_THROW(decode_tile_summary(bytes.data(), bytes.size() - 4, back), std::invalid_argument);
+}
+
+}  // namespace

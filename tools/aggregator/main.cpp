@@ -22,6 +22,7 @@
 
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
 using namespace litamin2;
 using namespace litamin2::aggregator;
@@ -44,23 +45,36 @@ AggregatorCore::Progress progress_printer(const char* what) {
   };
 }
 
-int run_export(const std::string& store_path, const std::string& map_ply,
-               const std::string& trajectories, const std::string& config_file) {
-  ExportOptions options;
-  options.store = store_path;
-  options.map_ply = map_ply;
-  options.trajectories_dir = trajectories;
+/// "min_x,min_y,max_x,max_y" (metres) as a box; nullopt if it is not four numbers.
+std::optional<ExportOptions::Box> parse_box(const std::string& text) {
+  ExportOptions::Box b;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%lf,%lf,%lf,%lf%c", &b.min_x, &b.min_y, &b.max_x, &b.max_y,
+                  &tail) != 4 ||
+      !(b.min_x <= b.max_x) || !(b.min_y <= b.max_y))
+    return std::nullopt;
+  return b;
+}
+
+int run_export(ExportOptions options, const std::string& config_file) {
+  const std::string store_path = options.store;
   options.progress = progress_printer("rebuilding the map");
   try {
-    if (!config_file.empty()) options.mapper = load_aggregator_config(config_file).mapper;
+    if (!config_file.empty()) {
+      const AggregatorConfig config = load_aggregator_config(config_file);
+      options.mapper = config.mapper;
+      options.tiles = config.map_tiles.tiles;
+    }
   } catch (const ConfigError& e) {
     std::fprintf(stderr, "error: invalid configuration: %s\n", e.what());
     return 2;
   }
   try {
     const ExportResult r = export_store(options);
-    std::fprintf(stderr, "%s: %zu keyframe(s) of %zu stream(s), %zu loop(s), %zu voxel(s)\n",
-                 store_path.c_str(), r.keyframes, r.streams, r.loops, r.voxels);
+    std::fprintf(stderr,
+                 "%s: %zu keyframe(s) of %zu stream(s), %zu loop(s), %zu voxel(s) from %zu "
+                 "tile(s)\n",
+                 store_path.c_str(), r.keyframes, r.streams, r.loops, r.voxels, r.tiles);
     for (const std::string& f : r.files) std::fprintf(stderr, "wrote %s\n", f.c_str());
   } catch (const store::StoreError& e) {
     std::fprintf(stderr, "error: cannot read the store: %s\n", e.what());
@@ -88,13 +102,21 @@ int main(int argc, char** argv) {
 
   CLI::App* exporter = app.add_subcommand(
       "export", "write the map (PLY) and trajectories (KITTI, TUM) of a store, read-only");
-  std::string store_path, map_ply, trajectories, export_config;
+  std::string store_path, map_ply, trajectories, export_config, box;
+  bool replay = false;
   exporter->add_option("--store", store_path, "the aggregator's store (SQLite)")->required();
   exporter->add_option("--map", map_ply, "global map of distributions (.ply)");
   exporter->add_option("--trajectories", trajectories,
                        "folder for <stream>_kitti.txt and <stream>_tum.txt");
+  exporter->add_flag("--replay", replay,
+                     "rebuild the graph from every keyframe in canonical order (O(N) "
+                     "registrations) instead of reading the stored graph");
   exporter->add_option("--mapper-config", export_config,
-                       "aggregator configuration whose mapper section to use (default: built-in)");
+                       "aggregator configuration whose mapper and map_tiles sections to use "
+                       "(default: built-in)");
+  exporter->add_option("--box", box,
+                       "only the map in MIN_X,MIN_Y,MAX_X,MAX_Y (map frame, metres): only the "
+                       "tiles that meet it are read");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -109,7 +131,20 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "error: export: give --map and/or --trajectories\n");
       return 2;
     }
-    return run_export(store_path, map_ply, trajectories, export_config);
+    ExportOptions options;
+    options.store = store_path;
+    options.map_ply = map_ply;
+    options.trajectories_dir = trajectories;
+    options.replay = replay;
+    if (!box.empty()) {
+      options.box = parse_box(box);
+      if (!options.box) {
+        std::fprintf(stderr, "error: export: --box wants MIN_X,MIN_Y,MAX_X,MAX_Y, got '%s'\n",
+                     box.c_str());
+        return 2;
+      }
+    }
+    return run_export(std::move(options), export_config);
   }
 
   AggregatorConfig config;

@@ -3,7 +3,9 @@
 /// durable store, the mapper, ingest batching, publication policy, watchdog and logging, and its
 /// validation (read from YAML by config/aggregator_config_yaml.hpp).
 
+#include "litamin2/aggregator/full_pass_worker.hpp"
 #include "litamin2/mapping/mapper_config.hpp"
+#include "litamin2/mapping/tile_map.hpp"
 #include "litamin2/service/security_config.hpp"
 #include "litamin2/service/transport_config.hpp"
 #include "litamin2/service/watchdog_config.hpp"
@@ -19,6 +21,8 @@ struct TopicsConfig {
   std::string keyframe_poses = "rt/litamin2/keyframe_poses";
   /// Output: the global map's summary (litamin2/msg/MapSummary).
   std::string map_summary = "rt/litamin2/map_summary";
+  /// Output: the map tiles that changed, one instance per tile (litamin2/msg/MapTile).
+  std::string map_tiles = "rt/litamin2/map_tiles";
   /// Output: the aggregator's status (diagnostic_msgs/DiagnosticArray).
   std::string status = "rt/litamin2/aggregator/status";
   /// Input: each stream's odometry (nav_msgs/Odometry), a pattern whose one '*' stands for the
@@ -35,6 +39,9 @@ struct StoreConfig {
   std::string path = "/var/lib/litamin2/aggregator.db";
   /// fsync at every commit (survives power loss; kill -9 is survived either way).
   bool synchronous_full = false;
+  /// Megabytes of keyframe distributions kept in memory (the mapper's DistributionCache); the
+  /// rest is read back from the store when a verification or the map needs it.
+  int distribution_cache_mb = 512;
 };
 
 struct IngestConfig {
@@ -46,14 +53,34 @@ struct IngestConfig {
 };
 
 struct PublishConfig {
-  /// Corrected poses of streams that changed are published at most this often, seconds.
+  /// Corrected poses of keyframes that were added or moved are published at most this often,
+  /// seconds, in chunks of ...
   double poses_period_s = 1.0;
-  /// The map summary is rebuilt and published at most this often (when changed), seconds.
+  /// ... this many consecutive keyframe ids of a stream: a publication sends again only the
+  /// chunks holding a keyframe that changed. 0: one chunk per stream (every keyframe of it),
+  /// what KeyframePoses carries today (keyed by stream only); the DDS node refuses > 0 until
+  /// the message has a chunk key.
+  int poses_chunk_keyframes = 0;
+  /// The map summary (made from the tile index) is published at most this often (when
+  /// changed), seconds.
   double summary_period_s = 10.0;
-  /// Voxel means listed in the summary at most (decimated evenly); 0 = counts only.
+  /// Voxel means listed in the summary at most (decimated evenly from the tiles' samples of
+  /// 32 means each); 0 = counts only.
   int summary_max_means = 10000;
+  /// Map tiles that changed are published at most this often, seconds.
+  double tiles_period_s = 2.0;
   /// Status period, seconds.
   double status_period_s = 1.0;
+};
+
+/// The global map in tiles (mapping/tile_map.hpp).
+struct MapTilesConfig {
+  mapping::TileMapConfig tiles;
+  /// Keyframes fused into (or moved in) the tiles per turn of the mapping thread at most: a
+  /// full pass that moves most of the map is folded into the tiles over many turns.
+  int max_keyframes_per_turn = 400;
+  /// Megabytes of tiles held in memory; the others are read back from the store.
+  int cache_mb = 256;
 };
 
 /// Bounds on what a client may send (docs/security.md, "Validation").
@@ -73,6 +100,9 @@ struct AggregatorConfig {
   IngestConfig ingest;
   PublishConfig publish;
   mapping::MapperConfig mapper;
+  MapTilesConfig map_tiles;
+  /// The background full pass of the pose graph (full_pass_worker.hpp).
+  FullPassConfig full_pass;
   service::WatchdogConfig watchdog;
   /// spdlog level: trace, debug, info, warn, error, critical, off.
   std::string log_level = "info";

@@ -1,16 +1,31 @@
 #pragma once
 /// The aggregator's state without threads or transport: the durable store and the mapper.
 ///
-/// Opening recovers: every stored keyframe is loaded (in canonical order) into a new mapper, so
-/// the mapper's state after a restart (even after kill -9) depends only on the set of stored
-/// keyframes. ingest() commits new keyframes to the store first and only then adds them to the
-/// mapper: whatever the mapper knows is durable. Duplicates (a key already known, or twice in
-/// one batch) are counted and ignored: the first patch of a key wins.
+/// Opening recovers the mapper's graph from the store's indexed tables (nodes with their
+/// descriptors, corrected poses, loop edges: Recovery::kTables), without a registration, in
+/// time linear in the keyframes with a small constant; the distributions stay in the store and
+/// come back through the mapper's bounded DistributionCache. A store written before those
+/// tables (schema version 1) is replayed once: every keyframe loaded in canonical order into a
+/// new mapper (Recovery::kReplay, also what `export --replay` does: a state that depends only
+/// on the set of stored keyframes).
+///
+/// ingest() runs one store transaction per batch: the new keyframes, then the graph changes
+/// they caused (new loop edges, moved corrected poses). A kill -9 at any point leaves either
+/// the batch's keyframes with all they caused or none of it (then the daemons' transient-local
+/// history delivers them again). Nothing is published before the commit. Duplicates (a key
+/// already known, or twice in one batch) are counted and ignored: the first patch of a key wins.
+///
+/// The global map is kept in tiles (mapping/tile_map.hpp): ingest and full passes mark the
+/// keyframes that arrived or moved, update_map() fuses a bounded number of them into the tiles
+/// and commits the changed tiles with the poses their keyframes are fused at (one
+/// transaction), so that a restart recovers the tiles and what is still to be fused into them
+/// from the tables too.
 ///
 /// Not thread-safe: one owner (the mapping thread; export runs it on its own).
 
 #include "litamin2/core/covariance_regularizer.hpp"
 #include "litamin2/mapping/mapper.hpp"
+#include "litamin2/mapping/tile_map.hpp"
 #include "litamin2/store/keyframe_store.hpp"
 
 #include <cstddef>
@@ -49,6 +64,35 @@ struct IngestCpu {
   double optimize_s = 0.0;
   /// Storing the loop edges and corrected poses after loops or an optimisation.
   double save_graph_s = 0.0;
+  /// Applying full passes (moving the keyframes, storing the moved poses).
+  double full_pass_apply_s = 0.0;
+  /// update_map(): fusing keyframes into the tiles ...
+  double map_fuse_s = 0.0;
+  /// ... and storing the changed tiles and map poses.
+  double map_store_s = 0.0;
+};
+
+struct CoreOptions {
+  enum class Recovery {
+    /// From the indexed tables (a version-1 store is replayed once).
+    kTables,
+    /// Every keyframe through a new mapper, in canonical order.
+    kReplay,
+  };
+  Recovery recovery = Recovery::kTables;
+  /// Bytes of distributions the mapper's cache holds (0 = unbounded).
+  std::size_t distribution_cache_bytes = 512u << 20;
+  /// The map tiles, and the bytes of tiles held in memory (0 = unbounded).
+  mapping::TileMapConfig tiles;
+  std::size_t tile_cache_bytes = 256u << 20;
+};
+
+/// What update_map() did.
+struct MapUpdate {
+  /// Keyframes fused into or subtracted from the tiles.
+  std::size_t keyframes = 0;
+  /// Tiles changed (stored, and to publish).
+  std::vector<mapping::TileKey> tiles;
 };
 
 class AggregatorCore {
@@ -60,14 +104,36 @@ class AggregatorCore {
   /// rebuilds the mapper from it and optimises. Throws ConfigError for an invalid mapper config.
   AggregatorCore(const std::string& store_path, store::OpenMode mode,
                  const mapping::MapperConfig& mapper_config,
-                 const store::StoreOptions& store_options = {}, const Progress& progress = {});
+                 const store::StoreOptions& store_options = {}, const Progress& progress = {},
+                 const CoreOptions& options = {});
+  // The cache and tile loaders refer to the store: not copyable, not movable.
+  AggregatorCore(const AggregatorCore&) = delete;
+  AggregatorCore& operator=(const AggregatorCore&) = delete;
 
   /// Commits the keyframes of `batch` not known yet to the store (one transaction), then adds
   /// them to the mapper in canonical order, optimises when loops were found and stores the new
   /// loop edges and corrected poses. `batch` is consumed.
   IngestResult ingest(std::vector<Keyframe>& batch);
 
+  /// Moves the keyframes by a solved full pass (Mapper::full_pass_problem, solved elsewhere)
+  /// and stores the moved poses. Returns how many keyframes moved.
+  std::size_t apply_full_pass(const mapping::FullPassProblem& problem);
+
+  /// Fuses at most `max_keyframes` of the keyframes that arrived or moved into the map tiles
+  /// (0: all), then stores the changed tiles and map poses in one transaction (not when open
+  /// read-only: the tiles then change in memory only).
+  MapUpdate update_map(std::size_t max_keyframes);
+  /// Keyframes still to be fused (or moved) in the tiles.
+  std::size_t map_pending() const { return tiles_.pending(); }
+  const mapping::TileMap& tiles() const { return tiles_; }
+  mapping::TileMap& tiles() { return tiles_; }
+
+  /// Nodes (KeyframeGraph numbering) added or moved since the last call, ascending: what the
+  /// corrected-pose publication has to send again.
+  std::vector<std::uint32_t> take_moved();
+
   const mapping::Mapper& mapper() const { return mapper_; }
+  mapping::Mapper& mapper() { return mapper_; }
   const store::KeyframeStore& store() const { return store_; }
   std::size_t recovered() const { return recovered_; }
   std::size_t duplicates() const { return duplicates_; }
@@ -78,10 +144,16 @@ class AggregatorCore {
   static const RegularizerConfig& regularizer();
 
  private:
-  void save_graph();
+  void recover_from_tables(const Progress& progress);
+  void replay(const Progress& progress);
+  /// Stores the loops from index `first_new` on and the poses that changed.
+  void save_changes(std::size_t first_new);
 
   store::KeyframeStore store_;
+  bool read_only_ = false;
   mapping::Mapper mapper_;
+  mapping::TileMap tiles_;
+  std::vector<std::uint32_t> moved_;
   std::size_t recovered_ = 0;
   std::size_t duplicates_ = 0;
   IngestCpu cpu_;

@@ -11,6 +11,9 @@ class AggregatorSink {
   virtual ~AggregatorSink() = default;
   virtual void publish_poses(const StreamPoses& poses) = 0;
   virtual void publish_summary(const MapSummary& summary) = 0;
+  /// A map tile that changed. Not on the wire yet (the DDS node has no MapTile type and keeps
+  /// this default, which drops it): tests and benchmarks record it.
+  virtual void publish_tile(const TileOutput& /*tile*/) {}
 };
 
 }  // namespace litamin2::aggregator

@@ -3,9 +3,17 @@
 /// keyframe chains per stream, place recognition and LiTAMIN2 verification of loop candidates
 /// within and between streams, pose-graph optimisation, and the global distribution map.
 ///
+/// In memory per keyframe: its KeyframeNode (keyframe_graph.hpp); the distributions are in a
+/// DistributionCache (all of them by default; the aggregator's is bounded and reads its store).
+/// optimize() is local to the new loops' region; optimize_full() (or full_pass_problem(),
+/// solved elsewhere, then apply_full_pass()) is the full pass (graph_optimizer.hpp).
+///
 /// Not thread-safe: one owner calls it (the aggregator's mapping thread).
 
 #include "litamin2/core/keyframe.hpp"
+#include "litamin2/mapping/distribution_cache.hpp"
+#include "litamin2/mapping/graph_optimizer.hpp"
+#include "litamin2/mapping/keyframe_graph.hpp"
 #include "litamin2/mapping/loop_edge.hpp"
 #include "litamin2/mapping/mapper_config.hpp"
 #include "litamin2/mapping/mapper_stats.hpp"
@@ -45,8 +53,9 @@ enum class AddStatus { kAdded, kDuplicate };
 
 class Mapper {
  public:
-  /// Throws ConfigError if the config is invalid.
-  explicit Mapper(const MapperConfig& config);
+  /// Throws ConfigError if the config is invalid. Without a cache, every keyframe's
+  /// distributions are kept in memory.
+  explicit Mapper(const MapperConfig& config, std::unique_ptr<DistributionCache> cache = nullptr);
   ~Mapper();
   Mapper(Mapper&&) noexcept;
   Mapper& operator=(Mapper&&) noexcept;
@@ -54,12 +63,34 @@ class Mapper {
   /// Adds a keyframe of any stream, in any order; a key already present is ignored
   /// (Duplicate). Place recognition runs against the keyframes present; verified loops are
   /// added to the graph and appended to `new_loops` if given. Does not optimise.
-  AddStatus add_keyframe(Keyframe keyframe, std::vector<LoopEdge>* new_loops = nullptr);
-  /// Optimises the pose graph when loops were added since the last optimisation.
+  /// `descriptor`: the keyframe's place descriptor if the caller made it already.
+  AddStatus add_keyframe(Keyframe keyframe, std::vector<LoopEdge>* new_loops = nullptr,
+                         const PlaceDescriptor* descriptor = nullptr);
+  /// The place descriptor the mapper makes of a keyframe's distributions.
+  PlaceDescriptor describe(const std::vector<Distribution>& distributions) const;
+  /// Optimises the region of the loops added since the last optimisation (local).
   OptimizeSummary optimize();
+  /// The local optimisation if loops are pending, then a full pass, here and now.
+  OptimizeSummary optimize_full();
+  /// The full pass's problem, to solve on another thread (GraphOptimizer::solve_full_pass)
+  /// while the mapper goes on, then apply_full_pass().
+  FullPassProblem full_pass_problem() const;
+  void apply_full_pass(const FullPassProblem& problem);
+  /// Loops checked since the latest full_pass_problem() (0: a full pass would change little).
+  std::size_t loops_since_full_pass() const;
+
+  /// Restores a mapper's state without registrations: nodes with their descriptors and
+  /// corrected poses (in any order; keys unique) and the loop edges between them (all
+  /// checked). The mapper must be empty. Throws std::invalid_argument for a loop whose
+  /// keyframes are missing.
+  void restore(std::vector<KeyframeNode> nodes, const std::vector<LoopEdge>& loops);
 
   bool contains(const KeyframeKey& key) const;
-  const Keyframe* keyframe(const KeyframeKey& key) const;
+  const KeyframeNode* node(const KeyframeKey& key) const;
+  const KeyframeGraph& graph() const;
+  DistributionCache& cache() const;
+  /// Keyframes whose pose changed (added, optimised) since the last call, by node index.
+  std::vector<std::uint32_t> take_changed();
   /// Corrected poses of every keyframe, ordered by key.
   std::vector<KeyframePose> poses() const;
   std::optional<KeyframePose> pose(const KeyframeKey& key) const;

@@ -6,6 +6,15 @@
 
 namespace litamin2::mapping {
 
+/// How the place search finds its candidates.
+enum class PlaceSearch {
+  /// The ring-key kd-tree and the spatial grid (ring_key_index.hpp, spatial_grid.hpp):
+  /// O(log^2 N) and O(keyframes nearby) per query.
+  kIndexed,
+  /// Every keyframe, O(N) per query: the same candidates, for comparisons and tests.
+  kLinear,
+};
+
 /// Place recognition over keyframes (place_descriptor.hpp).
 struct PlaceRecognitionConfig {
   /// Rings of the polar descriptor grid.
@@ -26,6 +35,12 @@ struct PlaceRecognitionConfig {
   /// (0 = off): drift is small enough that a revisit is found by position, and the estimate
   /// gives the registration a starting pose.
   double proximity_radius = 30.0;
+  PlaceSearch search = PlaceSearch::kIndexed;
+  /// A stream's keyframes are searched for loops (and their candidates verified) only every
+  /// this many metres of its odometry path (0 = every keyframe). A fleet revisiting its
+  /// streets finds a candidate at nearly every keyframe; verifying each costs ~10 ms, so a
+  /// fleet-scale aggregator samples them, as Cartographer's constraint builder does.
+  double search_spacing = 0.0;
 };
 
 /// Verification of a candidate by LiTAMIN2 registration of the two keyframes' patches
@@ -100,6 +115,20 @@ struct PoseGraphConfig {
   /// roads tilt less than this from where they started: it bounds the tilt drift that loops
   /// cannot correct on stretches never revisited.
   double level_prior_sigma_deg = 0.0;
+  /// The optimisation after new loops (Mapper::optimize) is local: the keyframes of each new
+  /// loop's stream since its latest earlier loop (at most this many before the loop's keyframe
+  /// and as many after it) are free, their neighbours in the graph fixed
+  /// (graph_optimizer.hpp). Its cost follows the drift corrected, not the map's size.
+  int local_max_keyframes = 2000;
+  /// ... and so is every keyframe within this many odometry edges of either end of a new
+  /// loop (along each end's own stream), so that the correction spreads on both sides. Not
+  /// through other loops: in a fleet's dense graph their hops would reach most of the map.
+  int local_hops = 10;
+  /// The full pass (Mapper::optimize_full, in the aggregator on a background thread) moves
+  /// runs of this many consecutive keyframes of a stream as one rigid segment (1 = every
+  /// keyframe its own node): its cost and memory are those of a graph this many times
+  /// smaller, and the shape within a segment is the local optimisation's.
+  int segment_keyframes = 10;
   /// Solver iteration limit.
   int max_iterations = 50;
   /// Solver threads.

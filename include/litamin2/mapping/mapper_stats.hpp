@@ -16,6 +16,10 @@ struct MapperStats {
   /// Of those, verified loops the graph could not accommodate.
   std::size_t inconsistent = 0;
   std::size_t optimizations = 0;
+  /// Full passes applied (Mapper::apply_full_pass).
+  std::size_t full_passes = 0;
+  /// Local optimisations whose solution ran off (pose_graph.hpp, within_reach): refused.
+  std::size_t diverged = 0;
 };
 
 /// CPU time (of the calling thread) spent in the mapper's stages since construction, seconds.
@@ -30,8 +34,10 @@ struct MapperCpu {
   double descriptor_search_s = 0.0;
   /// Loop verification (candidate submap and registration).
   double verification_s = 0.0;
-  /// Pose-graph optimisation.
+  /// Pose-graph optimisation (local).
   double optimize_s = 0.0;
+  /// Full passes run by optimize_full() on the calling thread.
+  double full_pass_s = 0.0;
 };
 
 }  // namespace litamin2::mapping

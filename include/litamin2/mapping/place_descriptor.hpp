@@ -8,22 +8,24 @@
 #include "litamin2/core/distribution.hpp"
 #include "litamin2/mapping/mapper_config.hpp"
 
+#include <cstdint>
 #include <vector>
 
 namespace litamin2::mapping {
 
+/// A keyframe's descriptor as the mapper keeps it in memory for every keyframe (and the store
+/// in its nodes table): 1 byte per cell, so that a million keyframes' descriptors fit in
+/// about 1.3 GB. The sector keys and column norms that the comparison needs are derived from
+/// the cells when two descriptors are compared (match_descriptors).
 struct PlaceDescriptor {
   int rings = 0;
   int sectors = 0;
-  /// rings x sectors, row-major by ring; 0 marks an empty cell, else height + offset > 0.
-  std::vector<float> cells;
-  /// Per ring, the fraction of occupied sectors: invariant to yaw, used to shortlist.
+  /// rings x sectors, row-major by ring; 0 marks an empty cell, else (height + offset) in
+  /// steps of kDescriptorHeightStep, at least 1 (an occupied cell is never 0), at most 255.
+  std::vector<std::uint8_t> cells;
+  /// Per ring, the fraction of occupied sectors: invariant to yaw, used to shortlist (the
+  /// ring-key index, ring_key_index.hpp).
   std::vector<float> ring_key;
-  /// Per sector, the mean of its cells: shifts with the yaw, used to align two descriptors
-  /// before the full comparison.
-  std::vector<float> sector_key;
-  /// Euclidean norm of each sector's column of cells.
-  std::vector<double> column_norms;
 };
 
 /// Column shifts on each side of the sector keys' best alignment that the full comparison
@@ -33,6 +35,9 @@ constexpr int kDescriptorShiftSearch = 3;
 /// Heights are measured from this far below the sensor, so that every occupied cell (ground
 /// included, about 1.7 m below a car's roof sensor) has a positive value.
 constexpr double kDescriptorHeightOffset = 3.0;
+
+/// Quantisation of a cell's height, metres: cells hold up to 25.5 m (22.5 m above the sensor).
+constexpr double kDescriptorHeightStep = 0.1;
 
 PlaceDescriptor make_place_descriptor(const std::vector<Distribution>& distributions,
                                       const PlaceRecognitionConfig& config);

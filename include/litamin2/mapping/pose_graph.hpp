@@ -27,6 +27,11 @@ struct PoseGraphEdge {
   std::optional<Matrix6d> covariance;
   /// Robust loss (loop edges) or plain least squares (odometry edges).
   bool robust = false;
+  /// The measured poses are those of nodes[from] * from_offset and nodes[to] * to_offset: a
+  /// node is then a rigid segment of keyframes and an offset a keyframe's pose in its
+  /// segment's frame (segment_graph.hpp). Identity for an edge between the nodes themselves.
+  Eigen::Isometry3d from_offset = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d to_offset = Eigen::Isometry3d::Identity();
 };
 
 struct PoseGraphResult {
@@ -34,10 +39,23 @@ struct PoseGraphResult {
   double initial_cost = 0.0;
   double final_cost = 0.0;
   bool usable = false;
+  /// The solver returned poses that are not finite or moved beyond reach (within_reach):
+  /// refused (usable false, `poses` left as they were).
+  bool diverged = false;
 };
 
+/// Whether `after` is a plausible solution from `before`: every pose finite and no
+/// translation moved by more than the graph's reach, the sum of the lengths of every edge's
+/// measurement and offsets (no solution that fits the edges can move a node further than a
+/// path through all of them). Converged solves of a well-posed graph always pass; a solve that
+/// ran off along a direction the edges do not hold (a node held only by loop edges far out in
+/// their robust loss) does not.
+bool within_reach(const std::vector<Eigen::Isometry3d>& before,
+                  const std::vector<Eigen::Isometry3d>& after,
+                  const std::vector<PoseGraphEdge>& edges);
+
 /// Optimises `poses` in place. Nodes with fixed[i] keep their pose; every connected part of
-/// the graph needs one.
+/// the graph needs one. A solution that is not within_reach is refused (result.diverged).
 PoseGraphResult optimize_pose_graph(std::vector<Eigen::Isometry3d>& poses,
                                     const std::vector<bool>& fixed,
                                     const std::vector<PoseGraphEdge>& edges,

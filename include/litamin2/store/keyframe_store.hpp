@@ -24,12 +24,14 @@
 #include "litamin2/core/covariance_regularizer.hpp"
 #include "litamin2/core/keyframe.hpp"
 #include "litamin2/mapping/loop_edge.hpp"
+#include "litamin2/mapping/map_tile.hpp"
 #include "litamin2/mapping/mapper.hpp"
 #include "litamin2/store/store_error.hpp"
 
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,7 +61,10 @@ class KeyframeStore {
   /// SQLite application_id (file header offset 68) of a keyframe store: "LT2K".
   static constexpr std::int32_t kApplicationId = 0x4C54324B;
   /// Schema version (PRAGMA user_version) this build reads and writes.
-  static constexpr int kSchemaVersion = 1;
+  static constexpr int kSchemaVersion = 2;
+  /// The oldest version it opens: a version-1 store opened for writing is upgraded in place
+  /// (nodes and tiles tables; migrate_schema), one opened read-only is read as it is.
+  static constexpr int kOldestSchemaVersion = 1;
 
   /// Opens or creates the store at `path`. Throws StoreError naming the path and the reason.
   static KeyframeStore open(const std::string& path, OpenMode mode,
@@ -79,8 +84,75 @@ class KeyframeStore {
   /// already (then the stored one is kept unchanged). Returns true if it was new.
   bool insert_keyframe(const Keyframe& keyframe);
   /// Inserts the keyframes not stored yet, all in one transaction (all or none on error).
-  /// Returns how many were new.
-  std::size_t insert_keyframes(const std::vector<const Keyframe*>& keyframes);
+  /// Returns how many were new. With `descriptors` (one per keyframe), each new keyframe's
+  /// node row (what a restart reads instead of the distributions) is written too.
+  std::size_t insert_keyframes(
+      const std::vector<const Keyframe*>& keyframes,
+      const std::vector<const mapping::PlaceDescriptor*>& descriptors = {});
+
+  /// A transaction spanning several calls (the aggregator's batch: its keyframes, then the
+  /// graph changes they caused), committed by commit(), else rolled back on destruction.
+  /// Calls made meanwhile join it instead of committing on their own.
+  class Batch {
+   public:
+    explicit Batch(KeyframeStore& store);
+    Batch(const Batch&) = delete;
+    Batch& operator=(const Batch&) = delete;
+    ~Batch();
+    void commit();
+
+   private:
+    KeyframeStore& store_;
+    bool done_ = false;
+  };
+
+  /// One keyframe's distributions (what the mapper's DistributionCache reads on a miss).
+  /// Throws StoreError if the keyframe is missing or its row is corrupt.
+  std::vector<Distribution> load_distributions(const KeyframeKey& key,
+                                               const RegularizerConfig& regularizer = {}) const;
+
+  /// What a restart rebuilds the mapper from, without the distributions: every keyframe's
+  /// node (descriptor empty where none is stored: made from the distributions by the caller),
+  /// its corrected pose if one is stored, and the loop edges.
+  struct GraphRecords {
+    struct Node {
+      mapping::KeyframeNode node;
+      /// The node's descriptor was stored (else node.descriptor is empty).
+      bool has_descriptor = false;
+      /// A corrected pose was stored (node.pose; else it is the odometry pose).
+      bool has_pose = false;
+      std::string frame;
+      /// The pose the keyframe is fused into the map tiles at.
+      std::optional<Eigen::Isometry3d> map_pose;
+    };
+    std::vector<Node> nodes;
+    std::vector<mapping::LoopEdge> loops;
+  };
+  GraphRecords load_graph() const;
+  /// Stores descriptors of nodes that have none (after a migration).
+  void store_descriptors(
+      const std::vector<std::pair<KeyframeKey, const mapping::PlaceDescriptor*>>& descriptors);
+
+  /// Inserts loop edges (an edge stored already is an error).
+  void insert_loop_edges(const std::vector<mapping::LoopEdge>& edges);
+  /// Inserts or replaces the corrected poses given (the others stay).
+  void upsert_corrected_poses(const std::vector<CorrectedPose>& poses);
+
+  /// Map tiles (mapping/tile_map.hpp). Inserts or replaces each tile with its summary; an
+  /// empty tile is deleted.
+  void upsert_tiles(const std::vector<std::shared_ptr<const mapping::MapTile>>& tiles,
+                    const mapping::TileGeometry& geometry);
+  /// One tile's voxels (nullopt: no such tile). Throws StoreError for a corrupt row.
+  std::optional<mapping::MapTile> load_tile(mapping::TileKey key,
+                                            const mapping::TileGeometry& geometry) const;
+  /// Every tile's summary (without reading the voxels), by key.
+  std::vector<mapping::TileSummary> load_tile_index() const;
+  std::size_t tile_count() const;
+  /// Deletes every tile and map pose (the tiles are to be made again).
+  void clear_map();
+  /// Sets the poses the keyframes are fused into the tiles at (nullopt: not fused).
+  void set_map_poses(
+      const std::vector<std::pair<KeyframeKey, std::optional<Eigen::Isometry3d>>>& poses);
 
   /// Every keyframe, in canonical order (canonical_before). Distributions get their
   /// cov, shape_cov and shape_cov_inv from the stored covariance with `regularizer`.
@@ -104,7 +176,9 @@ class KeyframeStore {
   struct Impl;
   explicit KeyframeStore(std::unique_ptr<Impl> impl);
   Impl& impl() const;
+  void write_loop_edges(const std::vector<mapping::LoopEdge>& edges);
   std::unique_ptr<Impl> impl_;
+  friend class Batch;
 };
 
 }  // namespace litamin2::store

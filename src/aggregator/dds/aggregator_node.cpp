@@ -84,10 +84,19 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
     : config_(std::move(config)),
       queue_(static_cast<std::size_t>(config_.ingest.queue_capacity)),
       listener_(queue_, patch_options(config_)) {
+  // KeyframePoses is keyed by stream only: chunks of a stream would replace each other.
+  if (config_.publish.poses_chunk_keyframes != 0)
+    throw std::invalid_argument(
+        "publish.poses_chunk_keyframes: must be 0 (one KeyframePoses instance per stream)");
   store::StoreOptions options;
   options.synchronous_full = config_.store.synchronous_full;
+  CoreOptions core_options;
+  core_options.distribution_cache_bytes =
+      static_cast<std::size_t>(config_.store.distribution_cache_mb) << 20;
+  core_options.tiles = config_.map_tiles.tiles;
+  core_options.tile_cache_bytes = static_cast<std::size_t>(config_.map_tiles.cache_mb) << 20;
   core_ = std::make_unique<AggregatorCore>(config_.store.path, store::OpenMode::kCreateIfMissing,
-                                           config_.mapper, options, progress);
+                                           config_.mapper, options, progress, core_options);
   spdlog::info("store {}: {} keyframe(s) of {} stream(s) recovered, {} loop edge(s)",
                config_.store.path, core_->recovered(), core_->mapper().stats().streams,
                core_->mapper().loops().size());

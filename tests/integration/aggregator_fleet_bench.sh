@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# litamin2-fleet-bench as a correctness test (nothing timed):
+#  1. a small fleet (10 vehicles, 3000 keyframes) with loop closure: loops are found, the
+#     map-frame ATE stays small, and the graph recovered from the store's tables on reopening
+#     is the one the run ended with (every pose bit-identical, every loop);
+#  2. a store of 20,000 keyframes (place search sampled every 200 m, so it is made in seconds)
+#     is reopened from its tables with the same check: a restart does not replay the keyframes.
+# Usage: aggregator_fleet_bench.sh BUILD_DIR WORK_DIR
+set -euo pipefail
+build=$1
+work=$2
+bench=$build/tools/bench/litamin2-fleet-bench
+rm -rf "$work"
+mkdir -p "$work"
+cd "$work"
+
+field() {  # field FILE NAME: a number or word of the JSON summary
+  sed -n "s/^ *\"$2\": \([^,]*\),\{0,1\}$/\1/p" "$1" | head -1
+}
+
+echo "== 1: 10 vehicles, 3000 keyframes, loop closure"
+"$bench" --vehicles 10 --keyframes 3000 --store small.db --json small.json --trajectories traj \
+  > small.out 2> small.log || { cat small.log; exit 1; }
+cat small.json
+[ "$(field small.json keyframes)" -eq 3000 ] || { echo "keyframes missing"; exit 1; }
+[ "$(field small.json loops)" -gt 0 ] || { echo "no loop found"; exit 1; }
+[ "$(field small.json restart_identical)" = true ] || { echo "restart differs"; exit 1; }
+awk -v a="$(field small.json ate_m)" 'BEGIN { exit !(a < 3.0) }' ||
+  { echo "map-frame ATE $(field small.json ate_m) m >= 3 m"; exit 1; }
+[ -s traj/vehicle_000.kitti ] && [ -s traj/vehicle_000_gt.kitti ]
+[ "$(wc -l < traj/vehicle_000.kitti)" -eq "$(wc -l < traj/vehicle_000_gt.kitti)" ]
+
+echo "== 2: 20 vehicles, 20000 keyframes, restart from the tables"
+"$bench" --vehicles 20 --keyframes 20000 --search-spacing 200 --store large.db \
+  --json large.json > large.out 2> large.log || { cat large.log; exit 1; }
+cat large.json
+[ "$(field large.json keyframes)" -eq 20000 ] || { echo "keyframes missing"; exit 1; }
+[ "$(field large.json restart_identical)" = true ] || { echo "restart differs"; exit 1; }
+echo "ok: restart of $(field large.json keyframes) keyframes in $(field large.json restart_s) s"

@@ -1,0 +1,131 @@
+// The place search through its indexes (ring-key kd-tree, spatial grid) gives the linear
+// scan's candidates: on the street drives (same loops, bit-identical poses) and, candidate by
+// candidate, on random ring keys with ties and ineligible nodes.
+
+#include "litamin2/mapping/mapper.hpp"
+#include "litamin2/mapping/ring_key_index.hpp"
+#include "litamin2/mapping/spatial_grid.hpp"
+#include "support/street_drive.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <set>
+
+using namespace litamin2;
+using namespace litamin2::mapping;
+using litamin2::testing::drive;
+using litamin2::testing::out_and_back;
+
+namespace {
+
+MapperConfig config_with(PlaceSearch search) {
+  MapperConfig config;
+  config.place.min_travel_gap = 20.0;
+  config.place.search = search;
+  return config;
+}
+
+void expect_same_mapping(const Mapper& indexed, const Mapper& linear) {
+  ASSERT_EQ(indexed.loops().size(), linear.loops().size());
+  for (std::size_t i = 0; i < indexed.loops().size(); ++i) {
+    EXPECT_EQ(indexed.loops()[i].from, linear.loops()[i].from) << i;
+    EXPECT_EQ(indexed.loops()[i].to, linear.loops()[i].to) << i;
+    EXPECT_TRUE(indexed.loops()[i].relative.matrix() == linear.loops()[i].relative.matrix()) << i;
+  }
+  EXPECT_EQ(indexed.stats().candidates, linear.stats().candidates);
+  const auto a = indexed.poses(), b = linear.poses();
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_TRUE(a[i].pose.matrix() == b[i].pose.matrix());
+}
+
+}  // namespace
+
+TEST(MappingPlaceIndex, SameLoopsAsTheLinearScanOnADrivingLoop) {
+  const auto keyframes = drive("a", out_and_back(), 0.05, 1);
+  Mapper indexed(config_with(PlaceSearch::kIndexed)), linear(config_with(PlaceSearch::kLinear));
+  for (const auto& kf : keyframes) {
+    indexed.add_keyframe(kf);
+    linear.add_keyframe(kf);
+    indexed.optimize();
+    linear.optimize();
+  }
+  EXPECT_GT(indexed.loops().size(), 5u);
+  expect_same_mapping(indexed, linear);
+}
+
+TEST(MappingPlaceIndex, SameLoopsAsTheLinearScanBetweenTwoVehicles) {
+  const auto truth = out_and_back();
+  const auto a = drive("a", {truth.begin(), truth.begin() + 21}, 0.0, 1);
+  const auto b = drive("b", {truth.begin() + 21, truth.end()}, 0.0, 2);
+  Mapper indexed(config_with(PlaceSearch::kIndexed)), linear(config_with(PlaceSearch::kLinear));
+  for (const std::vector<Keyframe>* stream : {&a, &b}) {
+    for (const auto& kf : *stream) {
+      indexed.add_keyframe(kf);
+      linear.add_keyframe(kf);
+    }
+  }
+  indexed.optimize();
+  linear.optimize();
+  EXPECT_FALSE(indexed.loops().empty());
+  expect_same_mapping(indexed, linear);
+}
+
+TEST(MappingPlaceIndex, RingKeyShortlistEqualsTheLinearOneWithTiesAndIneligibleNodes) {
+  // Keys of multiples of 1/8: many exact ties, broken by node number as the caller asks.
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> level(0, 8);
+  const int dims = 6;
+  RingKeyIndex index(dims);
+  std::vector<std::vector<float>> keys;
+  for (int i = 0; i < 3000; ++i) {
+    std::vector<float> k(dims);
+    for (float& v : k) v = static_cast<float>(level(rng)) / 8.0f;
+    index.add(k);
+    keys.push_back(k);
+  }
+  auto before = [](std::uint32_t a, std::uint32_t b) { return a > b; };  // any strict order
+  for (int q = 0; q < 200; ++q) {
+    std::vector<float> query(dims);
+    for (float& v : query) v = static_cast<float>(level(rng)) / 8.0f;
+    auto eligible = [&](std::uint32_t n) { return n % 7 != static_cast<std::uint32_t>(q % 7); };
+    std::vector<std::pair<double, std::uint32_t>> all;
+    for (std::uint32_t n = 0; n < keys.size(); ++n) {
+      if (!eligible(n)) continue;
+      all.emplace_back(index.distance(query, n), n);
+    }
+    std::sort(all.begin(), all.end(), [&](const auto& x, const auto& y) {
+      return x.first < y.first || (x.first == y.first && before(x.second, y.second));
+    });
+    const std::vector<std::uint32_t> found = index.nearest(query, 10, eligible, before);
+    ASSERT_EQ(found.size(), 10u);
+    for (std::size_t i = 0; i < found.size(); ++i)
+      EXPECT_EQ(found[i], all[i].second) << q << " " << i;
+  }
+}
+
+TEST(MappingPlaceIndex, SpatialGridVisitsEveryNodeWithinTheRadiusAfterMoves) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-200.0, 200.0);
+  SpatialGrid grid(30.0);
+  std::vector<Eigen::Vector3d> at;
+  for (std::uint32_t n = 0; n < 2000; ++n) {
+    at.emplace_back(u(rng), u(rng), 0.0);
+    grid.add(n, at.back());
+  }
+  for (std::uint32_t n = 0; n < 2000; n += 3) {
+    at[n] = Eigen::Vector3d(u(rng), u(rng), 1.0);
+    grid.move(n, at[n]);
+  }
+  for (int q = 0; q < 100; ++q) {
+    const Eigen::Vector3d p(u(rng), u(rng), 0.0);
+    std::set<std::uint32_t> visited;
+    grid.visit_near(p, 30.0, [&](std::uint32_t n) { EXPECT_TRUE(visited.insert(n).second); });
+    for (std::uint32_t n = 0; n < at.size(); ++n) {
+      if ((at[n] - p).norm() < 30.0) {
+        EXPECT_TRUE(visited.count(n)) << n;
+      }
+    }
+  }
+}

@@ -1,0 +1,195 @@
+// The tiled global map kept up to date by the change: after keyframes arrive out of order,
+// groups join the map, the map frame moves to another group, loops move keyframes and updates
+// are deferred (a small budget per call) and tiles evicted and read back, every tile equals a
+// full rebuild (every keyframe fused once, at the pose the incremental map holds it at) to
+// rounding; with a zero move threshold the tiles hold the global map's distributions.
+
+#include "litamin2/core/voxel_key.hpp"
+#include "litamin2/mapping/mapper.hpp"
+#include "litamin2/mapping/tile_map.hpp"
+#include "support/street_drive.hpp"
+
+#include <gtest/gtest.h>
+
+#include <map>
+
+using namespace litamin2;
+using namespace litamin2::mapping;
+using litamin2::testing::drive;
+using litamin2::testing::out_and_back;
+
+namespace {
+
+MapperConfig street_config() {
+  MapperConfig config;
+  config.place.min_travel_gap = 20.0;
+  return config;
+}
+
+/// a drives the street out and back with drift; b drives its second half later and starts
+/// from far away in its own frame, but its keyframes arrive first (so b is the map until a's
+/// first keyframe arrives, then a group that a loop joins to a's).
+std::vector<Keyframe> arrivals() {
+  const auto truth = out_and_back();
+  std::vector<Keyframe> a = drive("a", truth, 0.05, 1);
+  std::vector<Keyframe> b = drive("b", {truth.begin() + 21, truth.end()}, 0.0, 2);
+  for (auto& kf : b) kf.stamp.nanoseconds += 10'000'000'000;
+  std::vector<Keyframe> out(b.begin(), b.begin() + 8);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    out.push_back(a[i]);
+    if (8 + i < b.size()) out.push_back(b[8 + i]);
+  }
+  std::swap(out[10], out[12]);  // and one late keyframe
+  return out;
+}
+
+/// Every keyframe fused once at the pose `map` holds it at.
+std::map<TileKey, MapTile> full_rebuild(const Mapper& mapper, const TileMap& map) {
+  std::map<TileKey, MapTile> tiles;
+  const KeyframeGraph& graph = mapper.graph();
+  for (const auto& [key, n] : graph.by_key()) {
+    const auto pose = map.fused_pose(n);
+    if (!pose) continue;
+    std::map<TileKey, bool> seen;
+    for (const FusedMoment& m : fused_moments(*mapper.cache().get(key), *pose, map.geometry())) {
+      MapTile& t = tiles.try_emplace(m.tile, m.tile).first->second;
+      if (!seen[m.tile]) t.count_keyframe(+1);
+      seen[m.tile] = true;
+      EXPECT_TRUE(t.apply(m.voxel, m.moments, +1));
+    }
+  }
+  return tiles;
+}
+
+void expect_same_distributions(const std::vector<Distribution>& a,
+                               const std::vector<Distribution>& b, const std::string& what) {
+  ASSERT_EQ(a.size(), b.size()) << what;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].count, b[i].count) << what << " voxel " << i;
+    EXPECT_LT((a[i].mean - b[i].mean).norm(), 1e-9) << what << " voxel " << i;
+    EXPECT_LT((a[i].cov - b[i].cov).norm(), 1e-9) << what << " voxel " << i;
+  }
+}
+
+void expect_equals_full_rebuild(const Mapper& mapper, TileMap& map) {
+  const std::map<TileKey, MapTile> full = full_rebuild(mapper, map);
+  ASSERT_EQ(map.index().size(), full.size());
+  std::size_t distributions = 0;
+  for (const auto& [key, tile] : full) {
+    const auto incremental = map.tile(key);
+    ASSERT_TRUE(incremental) << key.ix << "," << key.iy;
+    EXPECT_EQ(incremental->keyframes(), tile.keyframes());
+    EXPECT_EQ(incremental->voxels().size(), tile.voxels().size());
+    const auto d = tile.distributions(map.geometry());
+    expect_same_distributions(incremental->distributions(map.geometry()), d,
+                              "tile " + std::to_string(key.ix) + "," + std::to_string(key.iy));
+    const TileSummary& s = map.index().at(key);
+    EXPECT_EQ(s.distributions, static_cast<std::int64_t>(d.size()));
+    EXPECT_EQ(s.keyframes, tile.keyframes());
+    distributions += d.size();
+  }
+  EXPECT_EQ(map.stats().distributions, distributions);
+  EXPECT_EQ(map.stats().inconsistent, 0u);
+}
+
+/// Feeds the arrivals to a mapper, optimising as the aggregator does and marking what changed,
+/// updating at most `budget` keyframes per step; a full pass at the end.
+void run(Mapper& mapper, TileMap& map, std::size_t budget,
+         const std::function<void(TileMap::Changes)>& persist = {}) {
+  auto step = [&](std::size_t max) {
+    for (std::uint32_t n : mapper.take_changed()) map.mark(n);
+    map.update(mapper.graph(), mapper.cache(), max);
+    if (persist) persist(map.take_changes());
+  };
+  for (const Keyframe& kf : arrivals()) {
+    mapper.add_keyframe(kf);
+    mapper.optimize();
+    step(budget);
+  }
+  mapper.optimize_full();
+  step(0);
+}
+
+}  // namespace
+
+TEST(MappingTileMap, IncrementalUpdatesEqualAFullRebuild) {
+  Mapper mapper(street_config());
+  TileMapConfig config;
+  config.tile_size = 20.0;  // the street spans several tiles
+  TileMap map(config, mapper.config().map_voxel_size);
+  run(mapper, map, 2);
+  ASSERT_GT(mapper.loops().size(), 5u);
+  EXPECT_EQ(mapper.map_anchor(), "a");
+  EXPECT_EQ(mapper.pose({"b", 3})->frame, "a") << "b was not joined to the map";
+  EXPECT_EQ(map.pending(), 0u);
+  const TileMapStats s = map.stats();
+  EXPECT_GT(s.tiles, 3u);
+  // b's first keyframes were in the map before a came, then left it, then came back; a's
+  // keyframes moved with the loops.
+  EXPECT_GT(s.subtracted, 20u);
+  EXPECT_GT(s.added, s.subtracted);
+  expect_equals_full_rebuild(mapper, map);
+}
+
+TEST(MappingTileMap, EvictedTilesReadBackGiveTheSameMap) {
+  Mapper a(street_config()), b(street_config());
+  TileMapConfig config;
+  config.tile_size = 20.0;
+  TileMap unbounded(config, a.config().map_voxel_size);
+  std::map<TileKey, MapTile> persisted;
+  std::size_t loads = 0;
+  TileMap bounded(
+      config, b.config().map_voxel_size,
+      [&](TileKey key) -> std::optional<MapTile> {
+        ++loads;
+        const auto it = persisted.find(key);
+        if (it == persisted.end()) return std::nullopt;
+        return it->second;
+      },
+      1);
+  run(a, unbounded, 3);
+  run(b, bounded, 3, [&](TileMap::Changes changes) {
+    for (const auto& t : changes.tiles) {
+      if (t->empty())
+        persisted.erase(t->key());
+      else
+        persisted.insert_or_assign(t->key(), *t);
+    }
+  });
+  EXPECT_GT(loads, 10u) << "the cache was not exercised";
+  EXPECT_LE(bounded.stats().tiles_in_memory, 1u);
+  ASSERT_EQ(bounded.index().size(), unbounded.index().size());
+  for (const auto& [key, summary] : unbounded.index()) {
+    expect_same_distributions(bounded.tile(key)->distributions(bounded.geometry()),
+                              unbounded.tile(key)->distributions(unbounded.geometry()),
+                              "tile " + std::to_string(key.ix) + "," + std::to_string(key.iy));
+  }
+}
+
+TEST(MappingTileMap, WithoutMoveThresholdTilesHoldTheGlobalMap) {
+  Mapper mapper(street_config());
+  TileMapConfig config;
+  config.tile_size = 20.0;
+  config.move_threshold_m = 0.0;
+  config.move_threshold_deg = 0.0;
+  TileMap map(config, mapper.config().map_voxel_size);
+  run(mapper, map, 0);
+  // The global map's distributions by voxel, against the tiles'.
+  const double inv = 1.0 / mapper.config().map_voxel_size;
+  std::map<std::uint64_t, Distribution> global;
+  for (const Distribution& d : mapper.global_map())
+    global[pack_voxel(voxel_index(d.mean, inv))] = d;
+  std::size_t tiled = 0;
+  for (const auto& [key, summary] : map.index()) {
+    for (const Distribution& d : map.tile(key)->distributions(map.geometry())) {
+      const auto it = global.find(pack_voxel(voxel_index(d.mean, inv)));
+      ASSERT_NE(it, global.end());
+      EXPECT_EQ(it->second.count, d.count);
+      EXPECT_LT((it->second.mean - d.mean).norm(), 1e-9);
+      EXPECT_LT((it->second.cov - d.cov).norm(), 1e-9);
+      ++tiled;
+    }
+  }
+  EXPECT_EQ(tiled, global.size());
+  EXPECT_GT(tiled, 100u);
+}

@@ -1,0 +1,368 @@
+// litamin2-fleet-bench: the aggregator's mapping thread at fleet scale, in process and at full
+// speed. V vehicles drive a shared street grid (fleet_drive.hpp) in a cheap model of the
+// simulator's world (fleet_world.hpp), making keyframes of ~500 distributions; a generator
+// thread feeds them to the PatchQueue and the aggregator's MappingWorker runs as in the daemon:
+// AggregatorCore::ingest (store transaction, place search, verification, local optimisation),
+// the map tiles' update, the background full pass (FullPassWorker) and the publication of poses,
+// tiles and summary into a counting sink. The DDS ingest bench
+// (tests/integration/aggregator_bench.sh) covers the transport. Writes a JSON summary
+// (docs/benchmarks.md).
+
+#include "fleet_drive.hpp"
+#include "fleet_world.hpp"
+#include "litamin2/aggregator/aggregator_core.hpp"
+#include "litamin2/aggregator/aggregator_sink.hpp"
+#include "litamin2/aggregator/mapping_worker.hpp"
+#include "litamin2/aggregator/patch_queue.hpp"
+#include "litamin2/core/stopwatch.hpp"
+#include "litamin2/io/trajectory.hpp"
+
+#include <sys/resource.h>
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <thread>
+
+using namespace litamin2;
+using namespace litamin2::aggregator;
+using namespace litamin2::bench;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+struct Options {
+  int vehicles = 100;
+  std::size_t keyframes = 10000;
+  std::string store = "fleet-bench.db";
+  std::string json;
+  std::string trajectories;
+  int blocks = 10;
+  double spacing = 2.0;
+  double search_spacing = 10.0;
+  int segment_keyframes = 10;
+  std::size_t cache_mb = 512;
+  double full_pass_duty = 0.25;
+  int poses_chunk = 0;
+  unsigned seed = 1;
+  bool keep_store = false;
+};
+
+std::string stream_name(int v) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "vehicle_%03d", v);
+  return buf;
+}
+
+double peak_rss_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;
+}
+
+double file_mb(const std::string& path) {
+  double total = 0.0;
+  for (const char* suffix : {"", "-wal"}) {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path + suffix, ec);
+    if (!ec) total += static_cast<double>(size);
+  }
+  return total / (1024.0 * 1024.0);
+}
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const auto i = static_cast<std::size_t>(
+      std::min<double>(v.size() - 1, std::floor(p * (v.size() - 1) + 0.5)));
+  return v[i];
+}
+
+/// Mapping CPU of the keyframes [from, to), from per-batch samples (end keyframe count, CPU s).
+double window_ms(const std::vector<std::pair<std::size_t, double>>& batches, std::size_t from,
+                 std::size_t to) {
+  double cpu = 0.0;
+  std::size_t begin = 0, n = 0;
+  for (const auto& [end, c] : batches) {
+    if (begin >= from && end <= to) {
+      cpu += c;
+      n += end - begin;
+    }
+    begin = end;
+  }
+  return n ? 1000.0 * cpu / n : 0.0;
+}
+
+/// Counts what the mapping thread publishes (the DDS writers' place).
+struct CountingSink : AggregatorSink {
+  std::size_t pose_messages = 0, pose_entries = 0, summaries = 0, tiles = 0;
+  void publish_poses(const StreamPoses& poses) override {
+    ++pose_messages;
+    pose_entries += poses.keyframes.size();
+  }
+  void publish_summary(const MapSummary&) override { ++summaries; }
+  void publish_tile(const TileOutput&) override { ++tiles; }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"litamin2-fleet-bench: the aggregator's core fed a synthetic fleet in process"};
+  Options o;
+  app.add_option("--vehicles", o.vehicles, "vehicles (streams)")->check(CLI::Range(1, 100000));
+  app.add_option("--keyframes", o.keyframes, "keyframes in all")->check(CLI::Range(1, 100000000));
+  app.add_option("--store", o.store, "the store to create (removed first)");
+  app.add_option("--json", o.json, "summary JSON");
+  app.add_option("--trajectories", o.trajectories,
+                 "folder for <vehicle>.kitti and <vehicle>_gt.kitti (map frame)");
+  app.add_option("--blocks", o.blocks, "street grid size, blocks per side")
+      ->check(CLI::Range(2, 1000));
+  app.add_option("--spacing", o.spacing, "metres between keyframes");
+  app.add_option("--search-spacing", o.search_spacing, "place_recognition.search_spacing, metres");
+  app.add_option("--segment-keyframes", o.segment_keyframes, "pose_graph.segment_keyframes");
+  app.add_option("--cache-mb", o.cache_mb, "distribution cache, MB");
+  app.add_option("--full-pass-duty", o.full_pass_duty, "full pass's share of a core (0 = none)");
+  app.add_option("--poses-chunk", o.poses_chunk,
+                 "publish.poses_chunk_keyframes (0: a stream's poses in one piece)")
+      ->check(CLI::Range(0, 10000000));
+  app.add_option("--seed", o.seed, "world and fleet seed");
+  app.add_flag("--keep-store", o.keep_store, "use an existing store instead of removing it");
+  CLI11_PARSE(app, argc, argv);
+
+  if (!o.keep_store) {
+    for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(o.store + suffix);
+  }
+  FleetWorldConfig world_config;
+  world_config.blocks = o.blocks;
+  world_config.seed = o.seed;
+  const FleetWorld world(world_config);
+  FleetDriveConfig drive_config;
+  drive_config.blocks = o.blocks;
+  drive_config.spacing = o.spacing;
+
+  mapping::MapperConfig mapper;
+  mapper.place.search_spacing = o.search_spacing;
+  mapper.graph.segment_keyframes = o.segment_keyframes;
+  mapper.graph.odometry_covariance = mapping::OdometryCovariance::kDistance;
+  CoreOptions core_options;
+  core_options.distribution_cache_bytes = o.cache_mb << 20;
+  // The aggregator's configuration (defaults) but for the options above; no last synchronous
+  // full pass at the end (the one in flight is applied).
+  AggregatorConfig config;
+  config.mapper = mapper;
+  config.full_pass.max_duty = o.full_pass_duty;
+  config.full_pass.on_stop = false;
+  config.ingest.max_batch = o.vehicles;
+  config.publish.poses_chunk_keyframes = o.poses_chunk;
+  core_options.tiles = config.map_tiles.tiles;
+  core_options.tile_cache_bytes = static_cast<std::size_t>(config.map_tiles.cache_mb) << 20;
+
+  std::fprintf(stderr, "fleet-bench: %d vehicles, %zu keyframes, world of %zu voxels, store %s\n",
+               o.vehicles, o.keyframes, world.voxels(), o.store.c_str());
+  // Ground truth of every keyframe, in vehicle 0's first frame.
+  std::map<KeyframeKey, Eigen::Isometry3d> truth;
+  std::mutex truth_mutex;
+  PatchQueue queue(static_cast<std::size_t>(4 * o.vehicles));
+  double distributions_total = 0.0;  // the generator's; read after it is joined
+  std::thread generator([&] {
+    std::vector<FleetVehicleDrive> drives;
+    std::vector<std::mt19937> rngs;
+    for (int v = 0; v < o.vehicles; ++v) {
+      drives.emplace_back(drive_config, o.seed * 7919u + static_cast<unsigned>(v));
+      rngs.emplace_back(o.seed * 104729u + static_cast<unsigned>(v));
+    }
+    Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
+    std::size_t made = 0;
+    for (std::uint64_t k = 0; made < o.keyframes; ++k) {
+      for (int v = 0; v < o.vehicles && made < o.keyframes; ++v, ++made) {
+        FleetVehicleDrive& d = drives[static_cast<std::size_t>(v)];
+        d.next();
+        if (k == 0 && v == 0) origin = d.truth().inverse();
+        Keyframe kf;
+        kf.key = {stream_name(v), k};
+        kf.stamp.nanoseconds = static_cast<std::int64_t>(k) * 1000000000 + v * 1000000;
+        kf.odom_pose = d.odometry();
+        kf.voxel_size = 3.0;
+        kf.distributions = world.patch(d.truth(), rngs[static_cast<std::size_t>(v)]);
+        distributions_total += static_cast<double>(kf.distributions.size());
+        {
+          std::lock_guard lock(truth_mutex);
+          truth[kf.key] = origin * d.truth();
+        }
+        if (!queue.push(std::move(kf))) return;
+      }
+    }
+    queue.close();
+  });
+
+  std::size_t keyframes = 0, loops = 0, full_passes = 0;
+  std::vector<mapping::KeyframePose> live_poses;
+  std::vector<std::pair<std::size_t, double>> batches;  // (keyframes after, mapping CPU s)
+  std::vector<double> loop_latency_ms;
+  double background_cpu_s = 0.0;
+  CountingSink sink;
+  std::size_t tiles = 0, map_pending = 0;
+  const auto wall_start = Clock::now();
+  {
+    AggregatorCore core(o.store, store::OpenMode::kCreateIfMissing, mapper, {}, {}, core_options);
+    MappingWorker worker(core, queue, sink, config);
+    std::size_t next_report = 10000;
+    IngestCpu last_in;
+    mapping::MapperCpu last_mc;
+    mapping::DistributionCacheStats last_cache;
+    mapping::MapperStats last_ms;
+    std::size_t reported_keyframes = 0;
+    double last_poses_cpu = 0.0, last_summary_cpu = 0.0, last_tiles_cpu = 0.0;
+    // On the mapping thread after each turn: its CPU, loop latencies and a report per 10k.
+    worker.observe([&](const TurnReport& turn) {
+      keyframes += turn.added;
+      batches.emplace_back(keyframes, turn.cpu_s);
+      loop_latency_ms.insert(loop_latency_ms.end(), turn.loop_latency_ms.begin(),
+                             turn.loop_latency_ms.end());
+      if (keyframes < next_report) return;
+      next_report += keyframes < 100000 ? 10000 : 100000;
+      std::fprintf(stderr,
+                   "%zu keyframes, %zu loops, %.2f ms/keyframe (last 10k), rss %.0f MB, %.0f s\n",
+                   keyframes, core.mapper().loops().size(),
+                   window_ms(batches, keyframes > 10000 ? keyframes - 10000 : 0, keyframes),
+                   peak_rss_mb(), std::chrono::duration<double>(Clock::now() - wall_start).count());
+      // Where the mapping thread's time went since the last report, ms per keyframe.
+      const IngestCpu in = core.cpu();
+      const mapping::MapperCpu mc = core.mapper().cpu();
+      const mapping::DistributionCacheStats cs = core.mapper().cache().stats();
+      const mapping::MapperStats ms = core.mapper().stats();
+      const WorkerStatus ws = worker.status();
+      const double k = 1000.0 / static_cast<double>(keyframes - reported_keyframes);
+      std::fprintf(
+          stderr,
+          "  stages ms/keyframe: store %.2f, regularize %.2f, descriptor search %.2f, "
+          "proximity %.2f, verification %.2f, local optimisation %.2f, save graph %.2f, "
+          "full pass apply %.2f, tiles fuse %.2f store %.2f, publish poses %.2f summary "
+          "%.2f tiles %.2f; cache misses %zu of %zu (loads %.2f); %zu candidates, %zu "
+          "verified, %zu local solves refused (ran off); %zu tiles, %zu keyframes to fuse\n",
+          k * (in.store_s - last_in.store_s), k * (in.regularize_s - last_in.regularize_s),
+          k * (mc.descriptor_search_s - last_mc.descriptor_search_s),
+          k * (mc.proximity_s - last_mc.proximity_s),
+          k * (mc.verification_s - last_mc.verification_s),
+          k * (in.optimize_s - last_in.optimize_s), k * (in.save_graph_s - last_in.save_graph_s),
+          k * (in.full_pass_apply_s - last_in.full_pass_apply_s),
+          k * (in.map_fuse_s - last_in.map_fuse_s), k * (in.map_store_s - last_in.map_store_s),
+          k * (ws.poses_cpu_s - last_poses_cpu), k * (ws.summary_cpu_s - last_summary_cpu),
+          k * (ws.tiles_cpu_s - last_tiles_cpu), cs.misses - last_cache.misses,
+          cs.misses - last_cache.misses + cs.hits - last_cache.hits,
+          k * (cs.load_s - last_cache.load_s), ms.candidates - last_ms.candidates,
+          ms.verified - last_ms.verified, ms.diverged, core.tiles().index().size(),
+          core.map_pending());
+      last_ms = ms;
+      last_in = in;
+      last_mc = mc;
+      last_cache = cs;
+      last_poses_cpu = ws.poses_cpu_s;
+      last_summary_cpu = ws.summary_cpu_s;
+      last_tiles_cpu = ws.tiles_cpu_s;
+      reported_keyframes = keyframes;
+    });
+    worker.start();
+    generator.join();
+    // Ingests what is queued, applies the pass in flight, publishes what is pending.
+    worker.stop();
+    const WorkerStatus ws = worker.status();
+    if (!ws.error.empty()) {
+      std::fprintf(stderr, "error: the mapping thread failed: %s\n", ws.error.c_str());
+      return 1;
+    }
+    full_passes = ws.full_passes;
+    background_cpu_s = ws.full_pass_cpu_s;
+    tiles = core.tiles().index().size();
+    map_pending = core.map_pending();
+    loops = core.mapper().loops().size();
+    live_poses = core.mapper().poses();
+  }
+  const double wall_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
+  const double rss_run = peak_rss_mb();
+
+  // Restart: reopen the final store as the aggregator does, to serving.
+  const auto r0 = Clock::now();
+  AggregatorCore reopened(o.store, store::OpenMode::kMustExist, mapper, {}, {}, core_options);
+  const double restart_s = std::chrono::duration<double>(Clock::now() - r0).count();
+  // The recovered graph is the one the run ended with: every pose, frame and loop.
+  const std::vector<mapping::KeyframePose> recovered = reopened.mapper().poses();
+  bool restart_identical =
+      recovered.size() == live_poses.size() && reopened.mapper().loops().size() == loops;
+  for (std::size_t i = 0; restart_identical && i < recovered.size(); ++i) {
+    restart_identical = recovered[i].key == live_poses[i].key &&
+                        recovered[i].frame == live_poses[i].frame &&
+                        recovered[i].pose.matrix() == live_poses[i].pose.matrix();
+  }
+
+  // ATE of every keyframe in the map frame (vehicle 0's odometry frame = its first pose).
+  const mapping::Mapper& m = reopened.mapper();
+  const std::string anchor = m.map_anchor();
+  double sum_sq = 0.0;
+  std::size_t in_map = 0;
+  std::set<std::string> merged;
+  for (const mapping::KeyframePose& p : m.poses()) {
+    if (p.frame != anchor) continue;
+    sum_sq += (p.pose.translation() - truth.at(p.key).translation()).squaredNorm();
+    ++in_map;
+    merged.insert(p.key.stream);
+  }
+  const double ate = in_map ? std::sqrt(sum_sq / in_map) : 0.0;
+
+  if (!o.trajectories.empty()) {
+    std::filesystem::create_directories(o.trajectories);
+    std::map<std::string, std::pair<std::vector<Eigen::Isometry3d>, std::vector<Eigen::Isometry3d>>>
+        by;
+    for (const mapping::KeyframePose& p : m.poses()) {
+      if (p.frame != anchor) continue;
+      by[p.key.stream].first.push_back(p.pose);
+      by[p.key.stream].second.push_back(truth.at(p.key));
+    }
+    for (const auto& [stream, poses] : by) {
+      io::write_kitti_poses(o.trajectories + "/" + stream + ".kitti", poses.first);
+      io::write_kitti_poses(o.trajectories + "/" + stream + "_gt.kitti", poses.second);
+    }
+  }
+
+  std::ostringstream j;
+  j.setf(std::ios::fixed);
+  j.precision(3);
+  j << "{\n  \"vehicles\": " << o.vehicles << ",\n  \"keyframes\": " << keyframes
+    << ",\n  \"distributions_per_keyframe\": " << (keyframes ? distributions_total / keyframes : 0)
+    << ",\n  \"loops\": " << loops << ",\n  \"full_passes\": " << full_passes
+    << ",\n  \"mapping_cpu_ms_per_keyframe\": {\n    \"all\": " << window_ms(batches, 0, keyframes)
+    << ",\n    \"first_10k\": " << window_ms(batches, 0, std::min<std::size_t>(10000, keyframes))
+    << ",\n    \"last_10k\": "
+    << window_ms(batches, keyframes > 10000 ? keyframes - 10000 : 0, keyframes);
+  for (std::size_t d = 1; d < keyframes; d *= 10) {
+    j << ",\n    \"" << d << "-" << std::min(10 * d, keyframes)
+      << "\": " << window_ms(batches, d, std::min(10 * d, keyframes));
+  }
+  j << "\n  },\n  \"background_full_pass_cpu_ms_per_keyframe\": "
+    << (keyframes ? 1000.0 * background_cpu_s / keyframes : 0)
+    << ",\n  \"loop_latency_ms_p50\": " << percentile(loop_latency_ms, 0.5)
+    << ",\n  \"loop_latency_ms_p99\": " << percentile(loop_latency_ms, 0.99)
+    << ",\n  \"peak_rss_mb\": " << rss_run
+    << ",\n  \"peak_rss_mb_after_restart\": " << peak_rss_mb()
+    << ",\n  \"store_mb\": " << file_mb(o.store) << ",\n  \"restart_s\": " << restart_s
+    << ",\n  \"restart_identical\": " << (restart_identical ? "true" : "false")
+    << ",\n  \"ate_m\": " << ate << ",\n  \"keyframes_in_map_frame\": " << in_map
+    << ",\n  \"vehicles_in_map_frame\": " << merged.size() << ",\n  \"tiles\": " << tiles
+    << ",\n  \"keyframes_not_fused_at_stop\": " << map_pending
+    << ",\n  \"published\": {\"pose_messages\": " << sink.pose_messages
+    << ", \"pose_entries\": " << sink.pose_entries << ", \"summaries\": " << sink.summaries
+    << ", \"tiles\": " << sink.tiles << "}"
+    << ",\n  \"wall_s\": " << wall_s << "\n}\n";
+  std::cout << j.str();
+  if (!o.json.empty()) std::ofstream(o.json) << j.str();
+  return 0;
+}
