@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <optional>
@@ -313,6 +314,57 @@ PointCloud read_pcd(const std::string& path) {
 }
 
 void write_pcd_binary(const std::string& path, const PointCloud& cloud) {
+  write_pcd_binary(path, cloud, {});
+}
+
+namespace {
+
+/// Stores `value` as a PCD field of the given type and size at `dst`.
+void encode(const PcdField& f, double value, char* dst) {
+  auto store = [&](auto v) { std::memcpy(dst, &v, sizeof(v)); };
+  auto integer = [&](double lo, double hi) { return std::clamp(std::round(value), lo, hi); };
+  if (f.type == 'F') {
+    if (f.size == 4) return store(static_cast<float>(value));
+    return store(value);
+  }
+  if (f.type == 'U') {
+    if (f.size == 1) return store(static_cast<std::uint8_t>(integer(0, 255)));
+    if (f.size == 2) return store(static_cast<std::uint16_t>(integer(0, 65535)));
+    return store(static_cast<std::uint32_t>(integer(0, 4294967295.0)));
+  }
+  if (f.size == 1) return store(static_cast<std::int8_t>(integer(-128, 127)));
+  if (f.size == 2) return store(static_cast<std::int16_t>(integer(-32768, 32767)));
+  store(static_cast<std::int32_t>(integer(-2147483648.0, 2147483647.0)));
+}
+
+void check_field(const std::string& path, const PcdField& f, std::size_t points,
+                 const std::vector<std::string>& taken) {
+  const std::string who = "write_pcd_binary(" + path + "): field '" + f.name + "': ";
+  if (f.name.empty() || std::any_of(f.name.begin(), f.name.end(), [](char c) {
+        return std::isspace(static_cast<unsigned char>(c)) != 0;
+      })) {
+    throw std::invalid_argument(who + "name must be non-empty without white space");
+  }
+  if (std::find(taken.begin(), taken.end(), f.name) != taken.end()) {
+    throw std::invalid_argument(who + "name is used twice");
+  }
+  const bool ok = f.type == 'F'                      ? (f.size == 4 || f.size == 8)
+                  : (f.type == 'U' || f.type == 'I') ? (f.size == 1 || f.size == 2 || f.size == 4)
+                                                     : false;
+  if (!ok) {
+    throw std::invalid_argument(who + "TYPE " + std::string(1, f.type) + " with SIZE " +
+                                std::to_string(f.size) + " is not supported");
+  }
+  if (f.values.size() != points) {
+    throw std::invalid_argument(who + std::to_string(f.values.size()) + " values for " +
+                                std::to_string(points) + " points");
+  }
+}
+
+}  // namespace
+
+void write_pcd_binary(const std::string& path, const PointCloud& cloud,
+                      const std::vector<PcdField>& extra) {
   if (cloud.has_intensities() && cloud.intensities.size() != cloud.points.size()) {
     throw std::invalid_argument(
         "write_pcd_binary(" + path + "): " + std::to_string(cloud.intensities.size()) +
@@ -320,19 +372,47 @@ void write_pcd_binary(const std::string& path, const PointCloud& cloud) {
   }
   const bool with_i = cloud.has_intensities();
   const std::size_t n = cloud.points.size();
+  std::vector<std::string> taken = {"x", "y", "z"};
+  if (with_i) taken.push_back("intensity");
+  for (const PcdField& f : extra) {
+    check_field(path, f, n, taken);
+    taken.push_back(f.name);
+  }
+  std::string fields = "FIELDS x y z", sizes = "SIZE 4 4 4", types = "TYPE F F F",
+              counts = "COUNT 1 1 1";
+  std::size_t stride = 3 * sizeof(float);
+  if (with_i) {
+    fields += " intensity";
+    sizes += " 4";
+    types += " F";
+    counts += " 1";
+    stride += sizeof(float);
+  }
+  for (const PcdField& f : extra) {
+    fields += " " + f.name;
+    sizes += " " + std::to_string(f.size);
+    types += " " + std::string(1, f.type);
+    counts += " 1";
+    stride += f.size;
+  }
   std::string out = "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\n";
-  out += with_i ? "FIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\n"
-                : "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n";
+  out += fields + "\n" + sizes + "\n" + types + "\n" + counts + "\n";
   out += "WIDTH " + std::to_string(n) + "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " +
          std::to_string(n) + "\nDATA binary\n";
   const std::size_t header_size = out.size();
-  const std::size_t stride = with_i ? 4 : 3;
-  out.resize(header_size + n * stride * sizeof(float));
+  out.resize(header_size + n * stride);
   char* dst = out.data() + header_size;
   for (std::size_t i = 0; i < n; ++i) {
-    float rec[4] = {cloud.points[i].x(), cloud.points[i].y(), cloud.points[i].z(),
-                    with_i ? cloud.intensities[i] : 0.0f};
-    std::memcpy(dst + i * stride * sizeof(float), rec, stride * sizeof(float));
+    char* rec = dst + i * stride;
+    const float xyzi[4] = {cloud.points[i].x(), cloud.points[i].y(), cloud.points[i].z(),
+                           with_i ? cloud.intensities[i] : 0.0f};
+    const std::size_t head = (with_i ? 4 : 3) * sizeof(float);
+    std::memcpy(rec, xyzi, head);
+    std::size_t offset = head;
+    for (const PcdField& f : extra) {
+      encode(f, f.values[i], rec + offset);
+      offset += f.size;
+    }
   }
   write_file_bytes(path, out.data(), out.size());
 }

@@ -4,6 +4,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -139,4 +141,45 @@ TEST(IoPcd, ErrorsNameTheFile) {
   expect_io_error([&] { read_pcd((dir / "missing.pcd").string()); }, "missing.pcd");
   expect_io_error([&] { write_pcd_binary((dir / "nodir" / "out.pcd").string(), sample(false)); },
                   "out.pcd");
+}
+
+TEST(IoPcd, BinaryWithExtraFieldsRoundTripsAndIsValidated) {
+  const fs::path dir = temp_dir();
+  const std::string path = (dir / "t.pcd").string();
+  const PointCloud cloud = sample(true);
+  std::vector<double> t, ring;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    t.push_back(0.005 * i);
+    ring.push_back(static_cast<double>(i % 16));
+  }
+  write_pcd_binary(path, cloud, {{"t", 'F', 4, t}, {"ring", 'U', 2, ring}});
+  const PointCloud back = read_pcd(path);  // the extra fields are skipped by the reader
+  ASSERT_EQ(back.size(), cloud.size());
+  EXPECT_EQ(back.points[7], cloud.points[7]);
+  EXPECT_EQ(back.intensities[7], cloud.intensities[7]);
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(bytes.find("FIELDS x y z intensity t ring\nSIZE 4 4 4 4 4 2\nTYPE F F F F F U\n"),
+            std::string::npos);
+  const std::size_t data = bytes.find("DATA binary\n") + 12;
+  float t7;
+  std::uint16_t ring7;
+  std::memcpy(&t7, bytes.data() + data + 7 * 22 + 16, 4);
+  std::memcpy(&ring7, bytes.data() + data + 7 * 22 + 20, 2);
+  EXPECT_FLOAT_EQ(t7, 0.035f);
+  EXPECT_EQ(ring7, 7);
+  // Without extra fields the file is the plain writer's.
+  write_pcd_binary(path, cloud, {});
+  const std::string plain = (dir / "p.pcd").string();
+  write_pcd_binary(plain, cloud);
+  std::ifstream a(path, std::ios::binary), b(plain, std::ios::binary);
+  EXPECT_EQ(std::string((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>()),
+            std::string((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>()));
+
+  EXPECT_THROW(write_pcd_binary(path, cloud, {{"t", 'F', 4, {1.0}}}), std::invalid_argument);
+  EXPECT_THROW(write_pcd_binary(path, cloud, {{"x", 'F', 4, t}}), std::invalid_argument);
+  EXPECT_THROW(write_pcd_binary(path, cloud, {{"t", 'F', 2, t}}), std::invalid_argument);
+  EXPECT_THROW(write_pcd_binary(path, cloud, {{"my t", 'F', 4, t}}), std::invalid_argument);
+  EXPECT_THROW(write_pcd_binary(path, cloud, {{"t", 'F', 4, t}, {"t", 'U', 2, ring}}),
+               std::invalid_argument);
 }

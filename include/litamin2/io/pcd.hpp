@@ -2,6 +2,7 @@
 /// Point Cloud Library .pcd files (format v0.7 and the older headers PCL still reads).
 
 #include <string>
+#include <vector>
 
 #include "litamin2/core/point_cloud.hpp"
 
@@ -20,5 +21,26 @@ PointCloud read_pcd(const std::string& path);
 /// x y z, plus intensity if the cloud has intensities. Throws IoError if the file cannot be
 /// written, std::invalid_argument if the cloud has intensities but not one per point.
 void write_pcd_binary(const std::string& path, const PointCloud& cloud);
+
+/// A per-point field written after x y z (and intensity) by write_pcd_binary: its PCD name,
+/// TYPE ('F' float, 'U' unsigned, 'I' signed) and SIZE in bytes (F: 4 or 8; U and I: 1, 2 or
+/// 4), one value per point (converted to the type; integers are rounded and clamped).
+struct PcdField {
+  /// Field name, e.g. "t" or "ring"; non-empty, no white space.
+  std::string name;
+  /// PCD TYPE letter.
+  char type = 'F';
+  /// PCD SIZE in bytes.
+  std::size_t size = 4;
+  /// One value per point.
+  std::vector<double> values;
+};
+
+/// As write_pcd_binary, followed by the extra fields in their order (e.g. a per-point time
+/// `t` as F 4 and `ring` as U 2, as LiDAR drivers publish them). Throws std::invalid_argument
+/// for a field with a bad name, type or size, a name that repeats x/y/z/intensity or another
+/// field, or not one value per point.
+void write_pcd_binary(const std::string& path, const PointCloud& cloud,
+                      const std::vector<PcdField>& extra);
 
 }  // namespace litamin2::io
