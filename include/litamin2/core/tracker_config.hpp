@@ -3,6 +3,7 @@
 /// YAML by config/tracker_config_yaml.hpp).
 
 #include "litamin2/core/config_error.hpp"
+#include "litamin2/core/deskew.hpp"
 #include "litamin2/core/registration_config.hpp"
 #include "litamin2/core/voxel_map.hpp"
 #include "litamin2/core/voxelizer.hpp"
@@ -25,6 +26,8 @@ struct TrackerConfig {
   RegistrationConfig registration;
   /// When the map is updated.
   KeyframeConfig keyframe;
+  /// Motion compensation within the sweep (Tracker::process with a SweepTiming).
+  DeskewConfig deskew;
 };
 
 /// Throws ConfigError on the first invalid value.
