@@ -49,11 +49,14 @@ set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME litamin2)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_PACKAGE_VENDOR "litamin2")
-set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "LiTAMIN2 LiDAR odometry: DDS daemon and tools")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
+  "LiTAMIN2 LiDAR odometry and fleet mapping: DDS daemon, aggregator and tools")
 set(CPACK_PACKAGE_DESCRIPTION
   "litamin2d runs one LiTAMIN2 tracker per point-cloud stream received over DDS (ROS 2\
- wire-compatible) and publishes odometry, map patches and status; run by systemd\
- (litamin2d.service, litamin2d@.service). Also the offline tools litamin2-odometry,\
+ wire-compatible) and publishes odometry, map patches and status; litamin2-aggregator\
+ stores the keyframes of every stream, closes loops within and between vehicles, optimises\
+ the pose graph and keeps the global map. Both run by systemd (litamin2d.service,\
+ litamin2d@.service, litamin2-aggregator.service). Also the offline tools litamin2-odometry,\
  litamin2-eval, litamin2-sim, litamin2-bench and the DDS replay tool.")
 set(LITAMIN2_PACKAGE_MAINTAINER
   "litamin2 maintainers <maintainers@users.noreply.h-seed-88a194ff.example>"

@@ -3,7 +3,7 @@
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config libfastrtps-dev fastddsgen fastdds-tools cyclonedds-dev cyclonedds-tools libsystemd-dev systemd iproute2 util-linux libeigen3-dev libtbb-dev libyaml-cpp-dev libspdlog-dev
       libcli11-dev libnanoflann-dev robin-map-dev libembree-dev libgtest-dev libgmock-dev
-      libbenchmark-dev libpng-dev libceres-dev libsqlite3-dev sqlite3 python3 file dpkg-dev)
+      libbenchmark-dev libcairo2-dev libceres-dev libsqlite3-dev sqlite3 python3 file dpkg-dev)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,6 +1,8 @@
 #include "litamin2/eval/alignment.hpp"
 
-#include <Eigen/SVD>
+#include <Eigen/Geometry>
+
+#include <cmath>
 #include <stdexcept>
 
 namespace litamin2::eval {
@@ -19,35 +21,27 @@ Similarity3 umeyama_alignment(const std::vector<Eigen::Vector3d>& src,
   }
   if (src.empty()) throw std::invalid_argument("umeyama_alignment: empty point sets");
 
-  const auto n = static_cast<double>(src.size());
-  Eigen::Vector3d mean_src = Eigen::Vector3d::Zero();
-  Eigen::Vector3d mean_dst = Eigen::Vector3d::Zero();
+  // Eigen's implementation of Umeyama (1991): centroids, SVD of the cross-covariance, the
+  // reflection fix, and the scale from the singular values over the source variance.
+  Eigen::Matrix3Xd from(3, static_cast<Eigen::Index>(src.size()));
+  Eigen::Matrix3Xd to(3, static_cast<Eigen::Index>(dst.size()));
   for (std::size_t i = 0; i < src.size(); ++i) {
-    mean_src += src[i];
-    mean_dst += dst[i];
+    from.col(static_cast<Eigen::Index>(i)) = src[i];
+    to.col(static_cast<Eigen::Index>(i)) = dst[i];
   }
-  mean_src /= n;
-  mean_dst /= n;
-
-  // Cross-covariance sigma = 1/n sum (dst - mean_dst)(src - mean_src)^T and variance of src.
-  Eigen::Matrix3d sigma = Eigen::Matrix3d::Zero();
-  double var_src = 0.0;
-  for (std::size_t i = 0; i < src.size(); ++i) {
-    const Eigen::Vector3d s = src[i] - mean_src;
-    sigma += (dst[i] - mean_dst) * s.transpose();
-    var_src += s.squaredNorm();
-  }
-  sigma /= n;
-  var_src /= n;
-
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(sigma, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Vector3d s = Eigen::Vector3d::Ones();
-  if (svd.matrixU().determinant() * svd.matrixV().determinant() < 0.0) s(2) = -1.0;
+  const Eigen::Matrix4d transform = Eigen::umeyama(from, to, with_scale);
 
   Similarity3 result;
-  result.rotation = svd.matrixU() * s.asDiagonal() * svd.matrixV().transpose();
-  result.scale = with_scale && var_src > 0.0 ? svd.singularValues().dot(s) / var_src : 1.0;
-  result.translation = mean_dst - result.scale * (result.rotation * mean_src);
+  result.scale = with_scale ? transform.block<3, 1>(0, 0).norm() : 1.0;
+  // A single point (no spread) has no scale to fit: Eigen then divides by a zero variance.
+  if (!std::isfinite(result.scale) || result.scale <= 0.0) {
+    result.scale = 1.0;
+    result.rotation.setIdentity();
+    result.translation = to.rowwise().mean() - from.rowwise().mean();
+    return result;
+  }
+  result.rotation = transform.block<3, 3>(0, 0) / result.scale;
+  result.translation = transform.block<3, 1>(0, 3);
   return result;
 }
 

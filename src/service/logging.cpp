@@ -4,7 +4,9 @@
 #include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <cstdlib>
 #include <stdexcept>
+#include <string>
 
 namespace litamin2::service {
 namespace {
@@ -57,12 +59,27 @@ int syslog_priority(const std::string& level) {
   return priority_of(parse_level(level));
 }
 
+bool stderr_is_journal() {
+  const char* stream = std::getenv("JOURNAL_STREAM");
+  return stream != nullptr && stream[0] != '\0';
+}
+
+std::string journal_prefix(int syslog_priority) {
+  if (!stderr_is_journal()) return {};
+  return "<" + std::to_string(syslog_priority) + ">";
+}
+
+void set_log_level(const std::string& level) {
+  spdlog::default_logger()->set_level(parse_level(level));
+}
+
 void setup_logging(const std::string& level) {
   const auto parsed = parse_level(level);
   auto logger = std::make_shared<spdlog::logger>("litamin2d",
                                                  std::make_shared<spdlog::sinks::stderr_sink_mt>());
   auto formatter = std::make_unique<spdlog::pattern_formatter>();
-  formatter->add_flag<SyslogPriorityFlag>('*').set_pattern("%*%l: %v");
+  formatter->add_flag<SyslogPriorityFlag>('*').set_pattern(stderr_is_journal() ? "%*%l: %v"
+                                                                               : "%l: %v");
   logger->set_formatter(std::move(formatter));
   logger->set_level(parsed);
   logger->flush_on(spdlog::level::info);

@@ -3,6 +3,8 @@
 #include <spdlog/spdlog.h>
 
 #include <csignal>
+#include <ctime>
+#include <string>
 
 namespace litamin2::service {
 
@@ -12,11 +14,26 @@ ServiceLoop::ServiceLoop(bool watchdog_enabled)
         return watchdog_enabled && interval ? *interval : std::chrono::microseconds(0);
       }()) {}
 
-int ServiceLoop::run(ShutdownSignals& signals, const Hooks& hooks,
+void ServiceLoop::reload(const Hooks& hooks) {
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  const long long usec = static_cast<long long>(now.tv_sec) * 1000000 + now.tv_nsec / 1000;
+  notifier_.notify("RELOADING=1\nMONOTONIC_USEC=" + std::to_string(usec));
+  if (hooks.reload) {
+    spdlog::info("SIGHUP received: reloading the configuration");
+    hooks.reload();
+  } else {
+    spdlog::info("SIGHUP received: nothing to reload");
+  }
+  notifier_.ready();
+}
+
+int ServiceLoop::run(ServiceSignals& signals, const Hooks& hooks,
                      std::chrono::milliseconds period) {
   auto next_summary = Clock::now();
   int signal = 0;
-  while ((signal = signals.wait_for(period)) == 0) {
+  while ((signal = signals.wait_for(period)) == 0 || signal == SIGHUP) {
+    if (signal == SIGHUP) reload(hooks);
     const auto now = Clock::now();
     if (!hooks.poll(now)) break;
     const bool healthy = hooks.healthy(now);

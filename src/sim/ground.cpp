@@ -48,6 +48,12 @@ double Ground::height(double x, double y, double base, double d, District distri
   if (!open && district != District::kGreen) {
     z += opt_.kerb_height * smoothstep(road, road + 0.25, d);
   }
+  // Short bumps: patches, ruts and lumpy verges (twice as strong off the road).
+  if (opt_.ground_bump_amplitude > 0) {
+    const double bumps =
+        0.6 * value_noise(x / 3.5, y / 3.5, 14) + 0.4 * value_noise(x / 1.6, y / 1.6, 15);
+    z += opt_.ground_bump_amplitude * bumps * (d < road ? 1.0 : 2.0);
+  }
   return z;
 }
 

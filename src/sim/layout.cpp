@@ -46,7 +46,7 @@ class Placer {
           const bool ok = opt_.buildings && rng.chance(density_chance(0.75)) &&
                           place(p, side, a + 0.5 * w, setback + 0.5 * depth, ObjectKind::kHouse,
                                 {w, depth, h}, 0.5 * w + 0.5, 0.5 * depth + 0.5, hw + 1.5, rng);
-          if (ok && opt_.vegetation && rng.chance(density_chance(0.5))) {
+          if (ok && opt_.vegetation && rng.chance(vegetation_chance(0.5))) {
             const double hl = rng.uniform(0.8, 1.5), hh = rng.uniform(0.8, 1.9);
             place(p, side, a + 0.5 * w, hw + rng.uniform(2.0, 3.5), ObjectKind::kHedge, {w, hl, hh},
                   0.5 * w, 0.5 * hl, hw + 1.0, rng);
@@ -112,7 +112,7 @@ class Placer {
                             : d == District::kSuburban ? 0.4
                             : d == District::kGreen    ? 0.85
                                                        : 0.05;
-      if (opt_.vegetation && rng.chance(density_chance(tree_p))) {
+      if (opt_.vegetation && rng.chance(vegetation_chance(tree_p))) {
         const double r = rng.uniform(1.5, 3.5), h = rng.uniform(2.2 * r, 4.0 * r);
         place(p, side, a + rng.uniform(0.0, 3.0), kerb + rng.uniform(1.0, 3.0) + (open ? 6.0 : 0.0),
               ObjectKind::kTree, {2 * r, 2 * r, h}, 0.6, 0.6, kerb + 0.5, rng);
@@ -149,13 +149,13 @@ class Placer {
                             : d == District::kSuburban ? 0.3
                             : d == District::kGreen    ? 0.9
                                                        : 0.08;
-      if (opt_.vegetation && rng.chance(density_chance(bush_p))) {
+      if (opt_.vegetation && rng.chance(vegetation_chance(bush_p))) {
         const double s = rng.uniform(0.6, 2.5);
         place(p, side, a + rng.uniform(0, 5), hw + rng.uniform(2.0, 25.0), ObjectKind::kBush,
               {s * rng.uniform(0.8, 1.6), s, s * rng.uniform(0.5, 1.0)}, 0.4 * s, 0.4 * s, hw + 0.8,
               rng);
       }
-      if (opt_.vegetation && rng.chance(density_chance(tree_p))) {
+      if (opt_.vegetation && rng.chance(vegetation_chance(tree_p))) {
         const double r = rng.uniform(1.5, 4.0), h = rng.uniform(2.2 * r, 4.0 * r);
         place(p, side, a + rng.uniform(0, 5),
               hw + rng.uniform(d == District::kOpen ? 12.0 : 4.0, 30.0), ObjectKind::kTree,
@@ -231,6 +231,10 @@ class Placer {
 
   /// Probability p scaled by the density option, at most 1.
   double density_chance(double p) const { return std::min(1.0, p * opt_.density); }
+  /// Probability p of a tree, bush or hedge, scaled by density and vegetation density.
+  double vegetation_chance(double p) const {
+    return std::min(1.0, p * opt_.density * opt_.vegetation_density);
+  }
 
   const RoadNetwork& roads_;
   const Ground& ground_;

@@ -1,6 +1,33 @@
 #include "litamin2/sim/lidar_model.hpp"
 
+#include <cmath>
+#include <stdexcept>
+
 namespace litamin2::sim {
+
+void LidarModel::validate() const {
+  const std::string who = "sensor model '" + name + "': ";
+  if (elevations_deg.empty()) throw std::invalid_argument(who + "no beams");
+  for (double e : elevations_deg) {
+    if (!std::isfinite(e) || std::abs(e) > 90.0) {
+      throw std::invalid_argument(who + "beam elevation " + std::to_string(e) +
+                                  " deg outside [-90, 90]");
+    }
+  }
+  if (azimuth_steps < 8) throw std::invalid_argument(who + "needs at least 8 azimuth steps");
+  if (!(min_range >= 0.0 && min_range < max_range && std::isfinite(max_range))) {
+    throw std::invalid_argument(who + "needs 0 <= min_range < max_range");
+  }
+  if (!(range_noise_sigma >= 0.0 && range_noise_sigma < 5.0)) {
+    throw std::invalid_argument(who + "range noise must be in [0, 5) m");
+  }
+  if (!(dropout >= 0.0 && dropout <= 1.0)) {
+    throw std::invalid_argument(who + "dropout must be in [0, 1]");
+  }
+  if (!(mount_height > 0.0 && std::isfinite(mount_height))) {
+    throw std::invalid_argument(who + "mount height must be positive");
+  }
+}
 
 LidarModel LidarModel::hdl64() {
   LidarModel m;

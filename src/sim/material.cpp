@@ -28,6 +28,8 @@ MaterialProperties material_properties(Material m) {
       return {0.30f, 0.05f};
     case Material::kCarGlass:
       return {0.10f, 0.5f};
+    case Material::kClothing:
+      return {0.30f, 0.02f};
     case Material::kCount:
       break;
   }
@@ -60,6 +62,8 @@ const char* material_name(Material m) {
       return "car_paint";
     case Material::kCarGlass:
       return "car_glass";
+    case Material::kClothing:
+      return "clothing";
     case Material::kCount:
       break;
   }

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <unordered_set>
+#include <utility>
 
 #include "litamin2/sim/grid.hpp"
 #include "litamin2/sim/ground.hpp"
@@ -46,11 +48,33 @@ struct World::Impl {
   std::unordered_set<std::int64_t> tiles;
 };
 
-World::World(const std::vector<std::vector<Eigen::Isometry3d>>& sensor_paths, std::uint64_t seed,
-             const WorldOptions& options) {
-  if (options.tile_size <= 0 || options.ground_resolution <= 0) {
+void WorldOptions::validate() const {
+  if (!(tile_size > 0) || !(ground_resolution > 0)) {
     throw std::invalid_argument("World: tile_size and ground_resolution must be positive");
   }
+  const std::pair<const char*, double> non_negative[] = {
+      {"corridor_radius", corridor_radius},
+      {"sensor_height", sensor_height},
+      {"ground_roughness", ground_roughness},
+      {"ground_bump_amplitude", ground_bump_amplitude},
+      {"grass_height", grass_height},
+      {"foliage_penetration", foliage_penetration},
+      {"terrain_amplitude", terrain_amplitude},
+      {"road_half_width", road_half_width},
+      {"kerb_height", kerb_height},
+      {"open_speed", open_speed},
+      {"density", density},
+      {"vegetation_density", vegetation_density}};
+  for (const auto& [name, v] : non_negative) {
+    if (!(v >= 0.0) || !std::isfinite(v)) {
+      throw std::invalid_argument(std::string("World: ") + name + " must be finite and >= 0");
+    }
+  }
+}
+
+World::World(const std::vector<std::vector<Eigen::Isometry3d>>& sensor_paths, std::uint64_t seed,
+             const WorldOptions& options) {
+  options.validate();
   impl_ = std::make_unique<Impl>(sensor_paths, seed, options);
   if (impl_->roads.empty()) throw std::invalid_argument("World: no trajectory poses given");
   impl_->tiles = impl_->roads.corridor_tiles();

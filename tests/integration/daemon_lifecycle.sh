@@ -36,14 +36,18 @@ log_level: debug
 YAML
 
 # Runs the daemon with a fake NOTIFY_SOCKET and WatchdogSec=0.4 s, stops it with signal $1 after
-# $2 seconds, and checks the notifications and the exit.
+# $2 seconds, and checks the notifications and the exit. With $3 = journal, stderr is "the
+# journal's" ($JOURNAL_STREAM set) and lines carry the syslog priority prefix; else they do not.
 run_with_signal() {
-  local signal=$1 seconds=$2 socket="$work/notify_$1.sock"
+  local signal=$1 seconds=$2 journal=${3:-} socket="$work/notify_$1.sock"
   rm -f "$socket" "notify_$1.log"
   python3 "$here/daemon_notify_listener.py" "$socket" "notify_$1.log" 30 &
   local listener=$!
   for _ in $(seq 1 100); do [ -S "$socket" ] && break; sleep 0.05; done
-  NOTIFY_SOCKET=$socket WATCHDOG_USEC=400000 "$daemon" --config daemon.yaml > "daemon_$1.log" 2>&1 &
+  local journal_stream=
+  [ "$journal" = journal ] && journal_stream=8:4242
+  JOURNAL_STREAM=$journal_stream NOTIFY_SOCKET=$socket WATCHDOG_USEC=400000 "$daemon" \
+    --config daemon.yaml > "daemon_$1.log" 2>&1 &
   local pid=$!
   sleep "$seconds"
   kill -0 $pid || { cat "daemon_$1.log"; fail "daemon died early"; }
@@ -70,11 +74,49 @@ run_with_signal() {
   [ "$(grep -m1 -E 'READY|WATCHDOG' "notify_$1.log" | cut -d' ' -f2)" = "READY=1" ] ||
     fail "WATCHDOG before READY"
   [ "$(tail -n 1 "notify_$1.log" | cut -d' ' -f2)" = "STOPPING=1" ] || fail "STOPPING not last"
-  grep -q "^<6>info: " "daemon_$1.log" || fail "log lines lack the syslog priority prefix"
+  if [ "$journal" = journal ]; then
+    grep -q "^<6>info: " "daemon_$1.log" || fail "journal log lines lack the syslog priority prefix"
+  else
+    grep -q "^info: " "daemon_$1.log" || fail "no plain info lines"
+    grep -q "^<[0-9]>" "daemon_$1.log" && fail "syslog priority prefix without the journal"
+  fi
+  return 0
 }
 
-echo "== sd_notify and SIGTERM"
-run_with_signal TERM 2
-echo "== sd_notify and SIGINT"
+echo "== sd_notify and SIGTERM (stderr to the journal)"
+run_with_signal TERM 2 journal
+echo "== sd_notify and SIGINT (stderr to a file)"
 run_with_signal INT 1
+
+echo "== SIGHUP: the log level changes at once, other changes are reported, a bad file is refused"
+socket=$work/notify_hup.sock
+sed 's/^log_level: .*/log_level: info/' daemon.yaml > hup.yaml
+rm -f "$socket" notify_hup.log
+python3 "$here/daemon_notify_listener.py" "$socket" notify_hup.log 30 &
+listener=$!
+for _ in $(seq 1 100); do [ -S "$socket" ] && break; sleep 0.05; done
+NOTIFY_SOCKET=$socket "$daemon" --config hup.yaml > daemon_hup.log 2>&1 &
+pid=$!
+for _ in $(seq 1 100); do grep -q "READY=1" notify_hup.log.tmp 2>/dev/null && break; sleep 0.05; done
+sed -i 's/^log_level: .*/log_level: debug/; s/^threads: .*/threads: 2/' hup.yaml
+kill -HUP $pid
+for _ in $(seq 1 40); do grep -q "reload: log level" daemon_hup.log && break; sleep 0.05; done
+kill -0 $pid || { cat daemon_hup.log; fail "SIGHUP ended the daemon"; }
+grep -q "reload: log level info -> debug" daemon_hup.log || { cat daemon_hup.log; fail "log level not reloaded"; }
+grep -q "reload: 'threads' changed in hup.yaml: it needs a restart" daemon_hup.log ||
+  fail "changed threads not reported"
+printf 'queue_depth: 0\n' >> hup.yaml
+kill -HUP $pid
+for _ in $(seq 1 40); do grep -q "reload: invalid configuration" daemon_hup.log && break; sleep 0.05; done
+grep -q "reload: invalid configuration, nothing changed: hup.yaml: queue_depth" daemon_hup.log ||
+  { cat daemon_hup.log; fail "invalid reload not refused"; }
+kill -0 $pid || fail "an invalid reload ended the daemon"
+kill -TERM $pid
+status=0
+wait $pid || status=$?
+wait $listener || true
+[ "$status" -eq 0 ] || { cat daemon_hup.log; fail "exit status $status after SIGHUP and SIGTERM"; }
+[ "$(grep -c ' RELOADING=1' notify_hup.log)" -eq 2 ] || { cat notify_hup.log; fail "RELOADING=1 not sent twice"; }
+# Each RELOADING=1 is followed by READY=1 (three READY in all, with the start's).
+[ "$(grep -c ' READY=1$' notify_hup.log)" -eq 3 ] || { cat notify_hup.log; fail "READY=1 not sent after each reload"; }
 echo PASS

@@ -34,6 +34,12 @@ set_tests_properties(deploy_package PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300
   RESOURCE_LOCK litamin2_install)
 endif()
 
+# The maintainer scripts run for real in a private mount namespace (needs root, else skipped).
+add_test(NAME deploy_maintainer_scripts
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/deploy_maintainer_scripts.sh ${CMAKE_SOURCE_DIR}
+    ${CMAKE_CURRENT_BINARY_DIR}/deploy_maintainer_scripts)
+set_tests_properties(deploy_maintainer_scripts PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 60)
+
 # A -DBUILD_SHARED_LIBS=ON build of the product (tests and benchmarks off) installed into a
 # scratch DESTDIR: every library lands beside the tools and the installed tools run from there
 # alone; and -DLITAMIN2_BUILD_TOOLS=OFF still defines every library. A build of its own (a few

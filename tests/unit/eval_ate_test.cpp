@@ -139,3 +139,13 @@ TEST(EvalAte, InvalidInputsThrow) {
   EXPECT_THROW(le::compute_ate({}, {}), std::invalid_argument);
   EXPECT_THROW(le::umeyama_alignment({}, {}), std::invalid_argument);
 }
+
+TEST(EvalAte, UmeyamaOfOnePointIsTheTranslationBetweenThem) {
+  // No spread: no rotation or scale can be fitted; the points are moved onto each other.
+  for (const bool with_scale : {false, true}) {
+    const auto t = litamin2::eval::umeyama_alignment({Eigen::Vector3d(1, 2, 3)},
+                                                     {Eigen::Vector3d(4, 4, 4)}, with_scale);
+    EXPECT_DOUBLE_EQ(t.scale, 1.0);
+    EXPECT_TRUE(t(Eigen::Vector3d(1, 2, 3)).isApprox(Eigen::Vector3d(4, 4, 4)));
+  }
+}

@@ -7,6 +7,7 @@
 #include "litamin2/aggregator/dds/aggregator_node.hpp"
 #include "litamin2/aggregator/map_export.hpp"
 #include "litamin2/config/aggregator_config_yaml.hpp"
+#include "litamin2/config/config_reload.hpp"
 #include "litamin2/core/config_error.hpp"
 #include "litamin2/io/io_error.hpp"
 #include "litamin2/mapping/mapper_config.hpp"
@@ -73,8 +74,8 @@ int run_export(const std::string& store_path, const std::string& map_ply,
 }  // namespace
 
 int main(int argc, char** argv) {
-  // Before any thread exists, so that every thread inherits the blocked SIGTERM/SIGINT.
-  service::ShutdownSignals signals;
+  // Before any thread exists, so that every thread inherits the blocked SIGTERM/SIGINT/SIGHUP.
+  service::ServiceSignals signals;
 
   CLI::App app{"litamin2-aggregator: keyframe store, loop closure and global map of every stream"};
   std::string config_file = "/etc/litamin2/litamin2-aggregator.yaml";
@@ -114,7 +115,8 @@ int main(int argc, char** argv) {
   try {
     config = load_aggregator_config(config_file);
   } catch (const ConfigError& e) {
-    std::fprintf(stderr, "<3>error: invalid configuration: %s\n", e.what());
+    std::fprintf(stderr, "%serror: invalid configuration: %s\n", service::journal_prefix(3).c_str(),
+                 e.what());
     return 2;
   }
   service::setup_logging(config.log_level);
@@ -141,6 +143,10 @@ int main(int argc, char** argv) {
     };
     hooks.healthy = [&](service::ServiceLoop::Clock::time_point now) { return node.healthy(now); };
     hooks.summary = [&](service::ServiceLoop::Clock::time_point) { return node.summary(); };
+    config::ConfigReload reload(config_file, config.log_level, [](const std::string& path) {
+      return load_aggregator_config(path).log_level;
+    });
+    hooks.reload = [&reload] { reload.reload(); };
     hooks.stall_message =
         fmt::format("a batch has been in processing for over {} s: withholding the watchdog",
                     config.watchdog.stall_timeout_s);

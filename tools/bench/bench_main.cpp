@@ -10,6 +10,7 @@
 #include "litamin2/io/kitti_bin.hpp"
 #include "litamin2/io/kitti_sequence.hpp"
 #include "litamin2/mapping/pose_graph.hpp"
+#include "litamin2/version.hpp"
 
 #include <benchmark/benchmark.h>
 #include <tbb/task_arena.h>
@@ -17,6 +18,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <string>
 
 namespace {
 
@@ -224,4 +226,36 @@ void BM_PoseGraph(benchmark::State& state) {
 }
 BENCHMARK(BM_PoseGraph)->Arg(1000)->Arg(3000)->Arg(10000)->Unit(benchmark::kMillisecond);
 
-BENCHMARK_MAIN();
+namespace {
+
+const char* kHelp =
+    "litamin2-bench: time of each LiTAMIN2 stage and of whole frames on KITTI-size scans.\n"
+    "\n"
+    "Environment:\n"
+    "  LITAMIN2_BENCH_SEQUENCE  a sequence folder (KITTI layout: velodyne/*.bin, e.g. from\n"
+    "                           litamin2-sim) for the whole-frame benchmarks (TrackerFrames,\n"
+    "                           VoxelizeSequence); without it they are skipped with a message.\n"
+    "  LITAMIN2_KEYING=sse2     force the baseline voxel keying (comparisons with AVX2).\n"
+    "The stage benchmarks read the two real KITTI scans of ../shared/data.\n"
+    "Commands, machine and results: docs/benchmarks.md.\n"
+    "\n"
+    "Google Benchmark's options follow (e.g. --benchmark_filter=REGEX, "
+    "--benchmark_repetitions=N).\n\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") std::cout << kHelp << std::flush;
+    if (arg == "--version" || arg == "-V") {
+      std::cout << "litamin2-bench " << litamin2::version() << "\n";
+      return 0;
+    }
+  }
+  benchmark::Initialize(&argc, argv);  // prints its own usage and exits on --help
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

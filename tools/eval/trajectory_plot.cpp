@@ -1,214 +1,329 @@
 #include "trajectory_plot.hpp"
 
+#include <cairo-pdf.h>
+#include <cairo-svg.h>
+#include <cairo.h>
+
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <limits>
-#include <sstream>
+#include <memory>
 #include <stdexcept>
-
-#ifdef LITAMIN2_EVAL_HAVE_PNG
-#include <png.h>
-#endif
 
 namespace litamin2::eval_tool {
 namespace {
 
-constexpr int kWidth = 800;  // image width in pixels
-constexpr int kMargin = 40;  // border around the plotted area
-constexpr int kMaxHeight = 1600;
+constexpr double kWidth = 900;       // page width (pixels for PNG, points for SVG/PDF)
+constexpr double kTitleHeight = 56;  // title and subtitle
+constexpr double kMargin = 64;       // left/bottom room for tick labels
+constexpr double kRightRoom = 96;    // colour bar and its labels
+constexpr double kMaxViewHeight = 900;
+constexpr double kErrorPanelHeight = 210;
+constexpr double kFontSize = 12;
 constexpr const char* kAxisNames = "xyz";
 
-struct Frame {
-  std::array<int, 2> axes{0, 2};
-  double min_u = 0, min_v = 0, scale = 1;  // metres -> pixels
-  int width = kWidth, height = kWidth;
-
-  // Pixel coordinates (origin top left, v axis pointing up in the world).
-  std::array<double, 2> pixel(const Eigen::Vector3d& p) const {
-    return {kMargin + (p(axes[0]) - min_u) * scale,
-            height - kMargin - (p(axes[1]) - min_v) * scale};
-  }
+struct Box {
+  double x = 0, y = 0, w = 0, h = 0;  // top left and size, page units
 };
 
-Frame make_frame(const std::vector<Eigen::Isometry3d>& gt,
-                 const std::vector<Eigen::Isometry3d>& est) {
-  Frame f;
-  f.axes = top_view_axes(gt, est);
-  double min_u = std::numeric_limits<double>::infinity(), max_u = -min_u;
-  double min_v = min_u, max_v = -min_u;
-  for (const auto* traj : {&gt, &est}) {
-    for (const auto& p : *traj) {
-      const Eigen::Vector3d t = p.translation();
-      if (!t.allFinite()) continue;
-      min_u = std::min(min_u, t(f.axes[0]));
-      max_u = std::max(max_u, t(f.axes[0]));
-      min_v = std::min(min_v, t(f.axes[1]));
-      max_v = std::max(max_v, t(f.axes[1]));
-    }
+/// A linear map of one world axis onto one page axis.
+struct AxisMap {
+  double world_min = 0, world_max = 1, page_min = 0, page_max = 1;
+  double operator()(double v) const {
+    return page_min + (v - world_min) / (world_max - world_min) * (page_max - page_min);
   }
-  if (!std::isfinite(min_u)) min_u = max_u = min_v = max_v = 0.0;
-  const double span_u = std::max(max_u - min_u, 1e-6);
-  const double span_v = std::max(max_v - min_v, 1e-6);
-  const int inner = kWidth - 2 * kMargin;
-  f.scale = inner / std::max(span_u, span_v * inner / (kMaxHeight - 2 * kMargin));
-  f.min_u = min_u - 0.5 * (inner / f.scale - span_u);  // centre horizontally
-  f.min_v = min_v;
-  f.width = kWidth;
-  f.height = std::max(2 * kMargin + 1, static_cast<int>(std::ceil(span_v * f.scale)) + 2 * kMargin);
-  return f;
-}
+};
 
 std::string extension_of(const std::string& path) {
   const auto dot = path.find_last_of('.');
-  if (dot == std::string::npos || path.find('/', dot) != std::string::npos) return "";
+  if (dot == std::string::npos) return {};
   std::string ext = path.substr(dot + 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return ext;
 }
 
-void write_svg(const std::string& path, const std::vector<Eigen::Isometry3d>& gt,
-               const std::vector<Eigen::Isometry3d>& est) {
-  const Frame f = make_frame(gt, est);
-  std::ostringstream svg;
-  svg.precision(6);
-  svg << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-      << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << f.width << "\" height=\""
-      << f.height << "\" viewBox=\"0 0 " << f.width << ' ' << f.height << "\">\n"
-      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  const auto polyline = [&](const std::vector<Eigen::Isometry3d>& traj, const char* colour) {
-    svg << "<polyline fill=\"none\" stroke=\"" << colour
-        << "\" stroke-width=\"1.5\" stroke-linejoin=\"round\" points=\"";
-    for (const auto& p : traj) {
-      if (!p.translation().allFinite()) continue;
-      const auto px = f.pixel(p.translation());
-      svg << px[0] << ',' << px[1] << ' ';
-    }
-    svg << "\"/>\n";
-  };
-  polyline(gt, "black");
-  polyline(est, "red");
-  if (!gt.empty()) {
-    const auto start = f.pixel(gt.front().translation());
-    svg << "<circle cx=\"" << start[0] << "\" cy=\"" << start[1]
-        << "\" r=\"4\" fill=\"none\" stroke=\"green\" stroke-width=\"1.5\"/>\n";
-  }
-  // Legend, axis names and a scale bar of a round length.
-  const double bar_m = std::pow(10.0, std::floor(std::log10(200.0 / f.scale)));
-  svg << "<g font-family=\"sans-serif\" font-size=\"13\">\n"
-      << "<line x1=\"10\" y1=\"14\" x2=\"30\" y2=\"14\" stroke=\"black\" stroke-width=\"2\"/>"
-      << "<text x=\"35\" y=\"18\">ground truth</text>\n"
-      << "<line x1=\"130\" y1=\"14\" x2=\"150\" y2=\"14\" stroke=\"red\" stroke-width=\"2\"/>"
-      << "<text x=\"155\" y=\"18\">estimate</text>\n"
-      << "<circle cx=\"240\" cy=\"14\" r=\"4\" fill=\"none\" stroke=\"green\"/>"
-      << "<text x=\"248\" y=\"18\">start</text>\n"
-      << "<text x=\"" << f.width - 200 << "\" y=\"18\">top view: " << kAxisNames[f.axes[0]]
-      << " right, " << kAxisNames[f.axes[1]] << " up</text>\n"
-      << "<line x1=\"" << kMargin << "\" y1=\"" << f.height - 12 << "\" x2=\""
-      << kMargin + bar_m * f.scale << "\" y2=\"" << f.height - 12
-      << "\" stroke=\"black\" stroke-width=\"2\"/>"
-      << "<text x=\"" << kMargin + bar_m * f.scale + 6 << "\" y=\"" << f.height - 8 << "\">"
-      << bar_m << " m</text>\n"
-      << "</g>\n</svg>\n";
-  std::ofstream out(path, std::ios::binary);
-  out << svg.str();
-  if (!out.good()) throw std::runtime_error(path + ": cannot write SVG file");
+/// Colour of a value in [0, 1]: dark blue, blue, green, yellow, red (a perceptually ordered
+/// ramp that stays readable on white).
+std::array<double, 3> ramp(double t) {
+  static const std::array<std::array<double, 3>, 5> stops = {{{0.15, 0.10, 0.55},
+                                                              {0.10, 0.45, 0.85},
+                                                              {0.15, 0.70, 0.35},
+                                                              {0.95, 0.75, 0.10},
+                                                              {0.85, 0.10, 0.10}}};
+  t = std::clamp(std::isfinite(t) ? t : 1.0, 0.0, 1.0) * (stops.size() - 1);
+  const std::size_t i = std::min<std::size_t>(static_cast<std::size_t>(t), stops.size() - 2);
+  const double f = t - static_cast<double>(i);
+  return {stops[i][0] + f * (stops[i + 1][0] - stops[i][0]),
+          stops[i][1] + f * (stops[i + 1][1] - stops[i][1]),
+          stops[i][2] + f * (stops[i + 1][2] - stops[i][2])};
 }
 
-#ifdef LITAMIN2_EVAL_HAVE_PNG
-struct Image {
-  int width, height;
-  std::vector<unsigned char> rgb;
-  Image(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 255) {}
+std::string number(double v, double step) {
+  char text[32];
+  const int decimals = step >= 1.0 ? 0 : static_cast<int>(std::ceil(-std::log10(step) - 1e-9));
+  std::snprintf(text, sizeof text, "%.*f", decimals, std::abs(v) < step * 1e-6 ? 0.0 : v);
+  return text;
+}
 
-  void dot(int x, int y, const std::array<unsigned char, 3>& c, int radius) {
-    for (int dy = -radius; dy <= radius; ++dy) {
-      for (int dx = -radius; dx <= radius; ++dx) {
-        const int px = x + dx, py = y + dy;
-        if (px < 0 || py < 0 || px >= width || py >= height) continue;
-        std::copy(c.begin(), c.end(),
-                  rgb.begin() + (static_cast<std::size_t>(py) * width + px) * 3);
+void text_at(cairo_t* cr, double x, double y, const std::string& s, double align_x = 0.0,
+             double align_y = 0.0) {
+  cairo_text_extents_t e;
+  cairo_text_extents(cr, s.c_str(), &e);
+  cairo_move_to(cr, x - align_x * e.width - e.x_bearing, y - align_y * e.height - e.y_bearing);
+  cairo_show_text(cr, s.c_str());
+}
+
+/// Frame, ticks with labels and grid lines of a panel.
+void draw_axes(cairo_t* cr, const Box& box, const AxisMap& mx, const AxisMap& my,
+               const std::string& x_label, const std::string& y_label) {
+  cairo_set_font_size(cr, kFontSize);
+  for (int axis = 0; axis < 2; ++axis) {
+    const AxisMap& m = axis == 0 ? mx : my;
+    const double step = tick_step(m.world_max - m.world_min, 8);
+    for (double v = std::ceil(m.world_min / step) * step; v <= m.world_max + step * 1e-9;
+         v += step) {
+      const double p = m(v);
+      cairo_set_source_rgb(cr, 0.88, 0.88, 0.88);
+      cairo_set_line_width(cr, 0.8);
+      if (axis == 0) {
+        cairo_move_to(cr, p, box.y);
+        cairo_line_to(cr, p, box.y + box.h);
+      } else {
+        cairo_move_to(cr, box.x, p);
+        cairo_line_to(cr, box.x + box.w, p);
+      }
+      cairo_stroke(cr);
+      cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
+      if (axis == 0) {
+        text_at(cr, p, box.y + box.h + 6, number(v, step), 0.5, 0.0);
+      } else {
+        text_at(cr, box.x - 6, p, number(v, step), 1.0, 0.5);
       }
     }
   }
+  cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
+  cairo_set_line_width(cr, 1.0);
+  cairo_rectangle(cr, box.x, box.y, box.w, box.h);
+  cairo_stroke(cr);
+  text_at(cr, box.x + box.w / 2, box.y + box.h + 26, x_label, 0.5, 0.0);
+  cairo_save(cr);
+  cairo_translate(cr, box.x - 48, box.y + box.h / 2);
+  cairo_rotate(cr, -M_PI / 2);
+  text_at(cr, 0, 0, y_label, 0.5, 0.5);
+  cairo_restore(cr);
+}
 
-  // Bresenham line with a square pen of the given radius.
-  void line(double x0d, double y0d, double x1d, double y1d, const std::array<unsigned char, 3>& c,
-            int radius) {
-    int x0 = static_cast<int>(std::lround(x0d)), y0 = static_cast<int>(std::lround(y0d));
-    const int x1 = static_cast<int>(std::lround(x1d)), y1 = static_cast<int>(std::lround(y1d));
-    const int dx = std::abs(x1 - x0), sx = x0 < x1 ? 1 : -1;
-    const int dy = -std::abs(y1 - y0), sy = y0 < y1 ? 1 : -1;
-    int err = dx + dy;
-    while (true) {
-      dot(x0, y0, c, radius);
-      if (x0 == x1 && y0 == y1) break;
-      const int e2 = 2 * err;
-      if (e2 >= dy) {
-        err += dy;
-        x0 += sx;
-      }
-      if (e2 <= dx) {
-        err += dx;
-        y0 += sy;
-      }
-    }
-  }
+struct Layout {
+  double height = 0;
+  Box view, errors, colour_bar;
+  AxisMap view_x, view_y;
 };
 
-void write_png(const std::string& path, const std::vector<Eigen::Isometry3d>& gt,
-               const std::vector<Eigen::Isometry3d>& est) {
-  const Frame f = make_frame(gt, est);
-  Image img(f.width, f.height);
-  const auto draw = [&](const std::vector<Eigen::Isometry3d>& traj,
-                        const std::array<unsigned char, 3>& c) {
-    for (std::size_t i = 1; i < traj.size(); ++i) {
-      if (!traj[i - 1].translation().allFinite() || !traj[i].translation().allFinite()) continue;
-      const auto a = f.pixel(traj[i - 1].translation());
-      const auto b = f.pixel(traj[i].translation());
-      img.line(a[0], a[1], b[0], b[1], c, 1);
+Layout layout(const TrajectoryPlot& plot, const std::array<int, 2>& axes) {
+  double lo_u = std::numeric_limits<double>::infinity(), hi_u = -lo_u, lo_v = lo_u, hi_v = -lo_u;
+  for (const auto* traj : {&plot.ground_truth, &plot.aligned_estimate}) {
+    for (const auto& p : *traj) {
+      const Eigen::Vector3d t = p.translation();
+      if (!t.allFinite()) continue;
+      lo_u = std::min(lo_u, t(axes[0]));
+      hi_u = std::max(hi_u, t(axes[0]));
+      lo_v = std::min(lo_v, t(axes[1]));
+      hi_v = std::max(hi_v, t(axes[1]));
     }
-  };
-  draw(gt, {0, 0, 0});
-  draw(est, {220, 0, 0});
-  if (!gt.empty()) {
-    const auto s = f.pixel(gt.front().translation());
-    img.dot(static_cast<int>(std::lround(s[0])), static_cast<int>(std::lround(s[1])), {0, 160, 0},
-            4);
   }
-  // Legend without text: black bar = ground truth, red bar = estimate (top left).
-  img.line(10, 10, 40, 10, {0, 0, 0}, 1);
-  img.line(10, 20, 40, 20, {220, 0, 0}, 1);
-  // Scale bar of a round length (10^k m) at the bottom left.
-  const double bar_m = std::pow(10.0, std::floor(std::log10(200.0 / f.scale)));
-  img.line(kMargin, f.height - 12, kMargin + bar_m * f.scale, f.height - 12, {0, 0, 0}, 1);
+  if (!std::isfinite(lo_u)) lo_u = hi_u = lo_v = hi_v = 0.0;
+  // 5 % room around the paths, at least 1 m in each direction.
+  const double pad = std::max(1.0, 0.05 * std::max(hi_u - lo_u, hi_v - lo_v));
+  lo_u -= pad, hi_u += pad, lo_v -= pad, hi_v += pad;
 
-  FILE* fp = std::fopen(path.c_str(), "wb");
-  if (!fp) throw std::runtime_error(path + ": cannot open PNG file for writing");
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  png_infop info = png ? png_create_info_struct(png) : nullptr;
-  if (!png || !info || setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(&png, &info);
-    std::fclose(fp);
-    throw std::runtime_error(path + ": libpng failed to write the image");
+  Layout l;
+  const double view_w = kWidth - kMargin - kRightRoom;
+  double scale = view_w / (hi_u - lo_u);  // equal scale on both axes
+  double view_h = (hi_v - lo_v) * scale;
+  if (view_h > kMaxViewHeight) {  // tall path: the height limits the scale, centre horizontally
+    scale = kMaxViewHeight / (hi_v - lo_v);
+    view_h = kMaxViewHeight;
+    const double half = 0.5 * view_w / scale, mid = 0.5 * (lo_u + hi_u);
+    lo_u = mid - half, hi_u = mid + half;
   }
-  png_init_io(png, fp);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(img.width), static_cast<png_uint_32>(img.height),
-               8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-               PNG_FILTER_TYPE_DEFAULT);
-  png_write_info(png, info);
-  for (int y = 0; y < img.height; ++y) {
-    png_write_row(png, img.rgb.data() + static_cast<std::size_t>(y) * img.width * 3);
-  }
-  png_write_end(png, nullptr);
-  png_destroy_write_struct(&png, &info);
-  if (std::fclose(fp) != 0) throw std::runtime_error(path + ": cannot write PNG file");
+  view_h = std::max(view_h, 120.0);
+  const double mid_v = 0.5 * (lo_v + hi_v), half_v = 0.5 * view_h / scale;
+  l.view = {kMargin, kTitleHeight, view_w, view_h};
+  l.view_x = {lo_u, hi_u, l.view.x, l.view.x + l.view.w};
+  l.view_y = {mid_v - half_v, mid_v + half_v, l.view.y + l.view.h, l.view.y};  // v upwards
+  l.colour_bar = {l.view.x + l.view.w + 24, l.view.y, 16, std::min(l.view.h, 300.0)};
+  l.errors = {kMargin, l.view.y + l.view.h + 64, view_w, kErrorPanelHeight - 64};
+  l.height = l.errors.y + l.errors.h + 56;
+  return l;
 }
-#endif
+
+void stroke_path(cairo_t* cr, const std::vector<Eigen::Isometry3d>& poses,
+                 const std::array<int, 2>& axes, const Layout& l) {
+  bool pen_down = false;
+  for (const auto& p : poses) {
+    const Eigen::Vector3d t = p.translation();
+    if (!t.allFinite()) {
+      pen_down = false;
+      continue;
+    }
+    const double x = l.view_x(t(axes[0])), y = l.view_y(t(axes[1]));
+    if (pen_down) {
+      cairo_line_to(cr, x, y);
+    } else {
+      cairo_move_to(cr, x, y);
+      pen_down = true;
+    }
+  }
+  cairo_stroke(cr);
+}
+
+void draw(cairo_t* cr, const TrajectoryPlot& plot, const std::array<int, 2>& axes,
+          const Layout& l) {
+  const auto& gt = plot.ground_truth;
+  const auto& est = plot.aligned_estimate;
+  std::vector<double> error(gt.size());
+  double max_error = 0.0;
+  for (std::size_t i = 0; i < gt.size(); ++i) {
+    error[i] = (gt[i].translation() - est[i].translation()).norm();
+    if (std::isfinite(error[i])) max_error = std::max(max_error, error[i]);
+  }
+  const double error_scale = max_error > 0.0 ? max_error : 1.0;
+
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
+  cairo_set_font_size(cr, 15);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  text_at(cr, kMargin, 12, plot.title);
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, kFontSize);
+  text_at(cr, kMargin, 33, plot.subtitle);
+
+  // Top view.
+  draw_axes(cr, l.view, l.view_x, l.view_y, std::string(1, kAxisNames[axes[0]]) + " [m]",
+            std::string(1, kAxisNames[axes[1]]) + " [m]");
+  cairo_save(cr);
+  cairo_rectangle(cr, l.view.x, l.view.y, l.view.w, l.view.h);
+  cairo_clip(cr);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+  cairo_set_line_width(cr, 1.5);
+  cairo_set_dash(cr, std::array<double, 2>{6.0, 3.0}.data(), 2, 0);
+  stroke_path(cr, gt, axes, l);
+  cairo_set_dash(cr, nullptr, 0, 0);
+  cairo_set_line_width(cr, 2.5);
+  for (std::size_t i = 1; i < est.size(); ++i) {  // each step coloured by its error
+    const Eigen::Vector3d a = est[i - 1].translation(), b = est[i].translation();
+    if (!a.allFinite() || !b.allFinite()) continue;
+    const auto c = ramp(0.5 * (error[i - 1] + error[i]) / error_scale);
+    cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+    cairo_move_to(cr, l.view_x(a(axes[0])), l.view_y(a(axes[1])));
+    cairo_line_to(cr, l.view_x(b(axes[0])), l.view_y(b(axes[1])));
+    cairo_stroke(cr);
+  }
+  if (!gt.empty() && gt.front().translation().allFinite()) {
+    const Eigen::Vector3d s = gt.front().translation();
+    cairo_set_source_rgb(cr, 0.0, 0.6, 0.0);
+    cairo_arc(cr, l.view_x(s(axes[0])), l.view_y(s(axes[1])), 5.0, 0, 2 * M_PI);
+    cairo_fill(cr);
+  }
+  cairo_restore(cr);
+
+  // Legend, top left inside the view.
+  const double lx = l.view.x + 10, ly = l.view.y + 10;
+  cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
+  cairo_rectangle(cr, lx, ly, 250, 62);
+  cairo_fill(cr);
+  cairo_set_line_width(cr, 1.5);
+  cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+  cairo_set_dash(cr, std::array<double, 2>{6.0, 3.0}.data(), 2, 0);
+  cairo_move_to(cr, lx + 8, ly + 12);
+  cairo_line_to(cr, lx + 38, ly + 12);
+  cairo_stroke(cr);
+  cairo_set_dash(cr, nullptr, 0, 0);
+  text_at(cr, lx + 46, ly + 12, "ground truth", 0.0, 0.5);
+  cairo_set_line_width(cr, 2.5);
+  for (int k = 0; k < 6; ++k) {
+    const auto c = ramp(k / 5.0);
+    cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+    cairo_move_to(cr, lx + 8 + 5 * k, ly + 31);
+    cairo_line_to(cr, lx + 13 + 5 * k, ly + 31);
+    cairo_stroke(cr);
+  }
+  cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+  text_at(cr, lx + 46, ly + 31, "estimate (aligned), colour = error", 0.0, 0.5);
+  cairo_set_source_rgb(cr, 0.0, 0.6, 0.0);
+  cairo_arc(cr, lx + 23, ly + 50, 4.0, 0, 2 * M_PI);
+  cairo_fill(cr);
+  cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+  text_at(cr, lx + 46, ly + 50, "start", 0.0, 0.5);
+
+  // Colour bar of the position error.
+  const Box& bar = l.colour_bar;
+  for (int k = 0; k < 100; ++k) {
+    const auto c = ramp(1.0 - k / 99.0);
+    cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+    cairo_rectangle(cr, bar.x, bar.y + bar.h * k / 100.0, bar.w, bar.h / 100.0 + 0.5);
+    cairo_fill(cr);
+  }
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_set_line_width(cr, 1.0);
+  cairo_rectangle(cr, bar.x, bar.y, bar.w, bar.h);
+  cairo_stroke(cr);
+  const double bar_step = tick_step(error_scale, 5);
+  for (double v = 0.0; v <= error_scale + bar_step * 1e-9; v += bar_step) {
+    text_at(cr, bar.x + bar.w + 4, bar.y + bar.h * (1.0 - v / error_scale), number(v, bar_step),
+            0.0, 0.5);
+  }
+  text_at(cr, bar.x, bar.y + bar.h + 8, "error [m]");
+
+  // Position error over time (or pose index).
+  const bool by_time = plot.times.size() == gt.size() && !gt.empty();
+  const double t0 = by_time ? plot.times.front() : 0.0;
+  const double t1 = by_time ? plot.times.back() : static_cast<double>(gt.size() - 1);
+  const AxisMap ex{t0, t1 > t0 ? t1 : t0 + 1.0, l.errors.x, l.errors.x + l.errors.w};
+  const AxisMap ey{0.0, error_scale * 1.1, l.errors.y + l.errors.h, l.errors.y};
+  draw_axes(cr, l.errors, ex, ey, by_time ? "time [s]" : "pose", "error [m]");
+  cairo_set_source_rgb(cr, 0.1, 0.35, 0.75);
+  cairo_set_line_width(cr, 1.5);
+  bool pen_down = false;
+  for (std::size_t i = 0; i < gt.size(); ++i) {
+    if (!std::isfinite(error[i])) {
+      pen_down = false;
+      continue;
+    }
+    const double x = ex(by_time ? plot.times[i] : static_cast<double>(i)), y = ey(error[i]);
+    if (pen_down) {
+      cairo_line_to(cr, x, y);
+    } else {
+      cairo_move_to(cr, x, y);
+      pen_down = true;
+    }
+  }
+  cairo_stroke(cr);
+}
+
+struct SurfaceDeleter {
+  void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
+};
+struct ContextDeleter {
+  void operator()(cairo_t* c) const { cairo_destroy(c); }
+};
 
 }  // namespace
+
+double tick_step(double span, int max_ticks) {
+  if (!std::isfinite(span) || span <= 0.0 || max_ticks < 1) return 1.0;
+  const double raw = span / max_ticks;
+  const double power = std::pow(10.0, std::floor(std::log10(raw)));
+  for (const double m : {1.0, 2.0, 5.0, 10.0}) {
+    if (m * power >= raw * (1.0 - 1e-12)) return m * power;
+  }
+  return 10.0 * power;
+}
 
 std::array<int, 2> top_view_axes(const std::vector<Eigen::Isometry3d>& gt,
                                  const std::vector<Eigen::Isometry3d>& est) {
@@ -239,24 +354,49 @@ std::array<int, 2> top_view_axes(const std::vector<Eigen::Isometry3d>& gt,
 
 std::string plot_format(const std::string& path) {
   const std::string ext = extension_of(path);
-#ifdef LITAMIN2_EVAL_HAVE_PNG
-  if (ext == "png") return ext;
-#endif
-  return ext == "svg" ? ext : "";
+  return ext == "png" || ext == "svg" || ext == "pdf" ? ext : "";
 }
 
-void write_trajectory_plot(const std::string& path, const std::vector<Eigen::Isometry3d>& gt,
-                           const std::vector<Eigen::Isometry3d>& est) {
-  const std::string ext = extension_of(path);
-  if (ext == "svg") return write_svg(path, gt, est);
-  if (ext == "png") {
-#ifdef LITAMIN2_EVAL_HAVE_PNG
-    return write_png(path, gt, est);
-#else
-    throw std::runtime_error(path + ": PNG output not available (built without libpng); use .svg");
-#endif
+void write_trajectory_plot(const std::string& path, const TrajectoryPlot& plot) {
+  const std::string format = plot_format(path);
+  if (format.empty())
+    throw std::runtime_error(path + ": unknown plot format (use a .png, .svg or .pdf file name)");
+  if (plot.ground_truth.size() != plot.aligned_estimate.size())
+    throw std::runtime_error(path + ": ground truth and estimate differ in length");
+  if (!plot.times.empty() && plot.times.size() != plot.ground_truth.size())
+    throw std::runtime_error(path + ": times and poses differ in length");
+  const auto axes = top_view_axes(plot.ground_truth, plot.aligned_estimate);
+  const Layout l = layout(plot, axes);
+
+  std::unique_ptr<cairo_surface_t, SurfaceDeleter> surface;
+  if (format == "png") {
+    surface.reset(cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(kWidth),
+                                             static_cast<int>(std::ceil(l.height))));
+  } else if (format == "svg") {
+    surface.reset(cairo_svg_surface_create(path.c_str(), kWidth, l.height));
+  } else {
+    surface.reset(cairo_pdf_surface_create(path.c_str(), kWidth, l.height));
   }
-  throw std::runtime_error(path + ": unknown plot format (use a .svg or .png file name)");
+  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS)
+    throw std::runtime_error(path + ": cannot create the " + format + " file: " +
+                             cairo_status_to_string(cairo_surface_status(surface.get())));
+  {
+    std::unique_ptr<cairo_t, ContextDeleter> cr(cairo_create(surface.get()));
+    draw(cr.get(), plot, axes, l);
+    if (cairo_status(cr.get()) != CAIRO_STATUS_SUCCESS)
+      throw std::runtime_error(
+          path + ": drawing failed: " + cairo_status_to_string(cairo_status(cr.get())));
+  }
+  cairo_status_t status = CAIRO_STATUS_SUCCESS;
+  if (format == "png") {
+    status = cairo_surface_write_to_png(surface.get(), path.c_str());
+  } else {
+    cairo_surface_finish(surface.get());
+    status = cairo_surface_status(surface.get());
+  }
+  if (status != CAIRO_STATUS_SUCCESS)
+    throw std::runtime_error(path + ": cannot write the " + format +
+                             " file: " + cairo_status_to_string(status));
 }
 
 }  // namespace litamin2::eval_tool

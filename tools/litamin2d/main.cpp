@@ -3,6 +3,7 @@
 // nav_msgs/Odometry on rt/<stream>/odom, map patches and a status (DiagnosticArray).
 // Runs under systemd as Type=notify (READY, WATCHDOG, STOPPING, STATUS).
 
+#include "litamin2/config/config_reload.hpp"
 #include "litamin2/config/daemon_config_yaml.hpp"
 #include "litamin2/core/config_error.hpp"
 #include "litamin2/daemon/dds/daemon_node.hpp"
@@ -38,8 +39,8 @@ std::string describe(const DaemonConfig& c) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // Before any thread exists, so that every thread inherits the blocked SIGTERM/SIGINT.
-  service::ShutdownSignals signals;
+  // Before any thread exists, so that every thread inherits the blocked SIGTERM/SIGINT/SIGHUP.
+  service::ServiceSignals signals;
 
   CLI::App app{"litamin2d: LiTAMIN2 LiDAR odometry for many sensor streams over DDS"};
   std::string config_file = "/etc/litamin2/litamin2d.yaml";
@@ -62,7 +63,8 @@ int main(int argc, char** argv) {
   try {
     config = load_daemon_config(config_file);
   } catch (const ConfigError& e) {
-    std::fprintf(stderr, "<3>error: invalid configuration: %s\n", e.what());
+    std::fprintf(stderr, "%serror: invalid configuration: %s\n", service::journal_prefix(3).c_str(),
+                 e.what());
     return 2;
   }
   service::setup_logging(config.log_level);
@@ -90,6 +92,10 @@ int main(int argc, char** argv) {
     };
     hooks.healthy = [&](ServiceLoop::Clock::time_point now) { return node.healthy(now); };
     hooks.summary = [&](ServiceLoop::Clock::time_point now) { return node.summary(now); };
+    config::ConfigReload reload(config_file, config.log_level, [](const std::string& path) {
+      return load_daemon_config(path).log_level;
+    });
+    hooks.reload = [&reload] { reload.reload(); };
     hooks.stall_message =
         fmt::format("a frame has been in processing for over {} s: withholding the watchdog",
                     config.watchdog.stall_timeout_s);

@@ -6,7 +6,10 @@
 #include <tbb/global_control.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -18,13 +21,18 @@
 #include "litamin2/io/io_error.hpp"
 #include "litamin2/io/kitti_bin.hpp"
 #include "litamin2/io/kitti_calib.hpp"
+#include "litamin2/io/kitti_sequence.hpp"
+#include "litamin2/io/pcd.hpp"
 #include "litamin2/io/trajectory.hpp"
 #include "litamin2/sim/builtin_trajectory.hpp"
 #include "litamin2/sim/fleet.hpp"
+#include "litamin2/sim/frame_selection.hpp"
 #include "litamin2/sim/random.hpp"
 #include "litamin2/sim/raycaster.hpp"
+#include "litamin2/sim/realism.hpp"
 #include "litamin2/sim/scan_statistics.hpp"
 #include "litamin2/sim/sequence_writer.hpp"
+#include "litamin2/sim/traffic.hpp"
 #include "litamin2/sim/trajectory_window.hpp"
 #include "litamin2/sim/world.hpp"
 
@@ -58,22 +66,60 @@ std::optional<int> sequence_from_filename(const std::string& path) {
   return std::stoi(stem);
 }
 
-struct StatsAccumulator {
-  std::size_t n = 0;
-  double points = 0, v1 = 0, v2 = 0, v3 = 0, v3m5 = 0, v5 = 0, r50 = 0, r90 = 0, rmax = 0;
-  void add(const sim::ScanStatistics& s) {
-    ++n;
-    points += s.points;
-    v1 += s.voxels_1m;
-    v2 += s.voxels_2m;
-    v3 += s.voxels_3m;
-    v3m5 += s.voxels_3m_min5;
-    v5 += s.voxels_5m;
-    r50 += s.range_median;
-    r90 += s.range_p90;
-    rmax += s.range_max;
+/// Statistics of real scans: one .bin or .pcd file, or every scan of a folder (a KITTI
+/// sequence folder or a folder of .bin/.pcd files), averaged; rings from the given elevations.
+sim::ScanStatisticsMean real_statistics(const std::string& path,
+                                        const std::vector<double>& elevations_deg) {
+  sim::ScanStatisticsMean mean;
+  if (std::filesystem::is_directory(path)) {
+    const io::ScanSequence seq(path);
+    for (std::size_t i = 0; i < seq.size(); ++i) {
+      mean.add(sim::compute_scan_statistics(seq.load(i), elevations_deg));
+    }
+  } else {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const litamin2::PointCloud cloud =
+        ext == ".pcd" ? io::read_pcd(path) : io::read_kitti_bin(path, io::KittiBinOptions{});
+    mean.add(sim::compute_scan_statistics(cloud, elevations_deg));
   }
-};
+  return mean;
+}
+
+/// Parses "A,B[,...]" into `count` numbers; throws std::invalid_argument naming the option.
+std::vector<double> parse_numbers(const std::string& text, std::size_t count, const char* option) {
+  std::vector<double> out;
+  std::size_t pos = 0;
+  while (out.size() < count) {
+    const std::size_t comma = text.find(',', pos);
+    const std::string item = text.substr(pos, comma == std::string::npos ? comma : comma - pos);
+    std::size_t used = 0;
+    double v = 0.0;
+    try {
+      v = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (item.empty() || used != item.size() || !std::isfinite(v)) break;
+    out.push_back(v);
+    if (comma == std::string::npos) break;
+    pos = comma + 1;
+  }
+  if (out.size() != count ||
+      std::count(text.begin(), text.end(), ',') + 1 != static_cast<std::ptrdiff_t>(count)) {
+    throw std::invalid_argument(std::string(option) + " expects " + std::to_string(count) +
+                                " comma-separated numbers, got '" + text + "'");
+  }
+  return out;
+}
+
+std::array<double, 3> parse_triple(const std::string& text, const char* option) {
+  const auto v = parse_numbers(text, 3, option);
+  if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] + v[1] + v[2] <= 0) {
+    throw std::invalid_argument(std::string(option) + " needs shares >= 0 with a positive sum");
+  }
+  return {v[0], v[1], v[2]};
+}
 
 }  // namespace
 
@@ -123,9 +169,66 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "Worker threads (0 = all cores)")
       ->check(CLI::Range(0, 1024));
   app.add_option("--compare-real", compare_real,
-                 "Real scan (.bin, xyz or xyzi) whose voxel/range statistics are printed next to "
-                 "the mean of the simulated scans")
-      ->check(CLI::ExistingFile);
+                 "Real scan (.bin xyz/xyzi or .pcd) or folder of scans whose statistics (mean) are "
+                 "printed next to the mean of the simulated scans")
+      ->check(CLI::ExistingPath);
+  // Realism: a preset and single overrides (docs/simulator.md, "Harder sequences").
+  std::string realism = "none", self_hits, mount_tilt, sweep_direction, districts;
+  bool sweep_motion_on = false, sweep_motion_off = false, lead_on = false, lead_off = false;
+  std::optional<double> sweep_start, drop_frames, oncoming, pedestrians, ground_bumps, grass_height,
+      foliage_depth, vegetation;
+  std::optional<std::size_t> max_gap;
+  app.add_option("--realism", realism,
+                 "Preset of what real drives add: none (default: the simulator as it was) | "
+                 "street (all of the options below, as on a real VLP-16 drive)")
+      ->check(CLI::IsMember(sim::realism_names()));
+  auto* motion_on = app.add_flag(
+      "--sweep-motion", sweep_motion_on,
+      "Cast each firing from its own pose within the 100 ms sweep (each point in the sensor "
+      "frame of its firing, not deskewed, as drivers publish them; ground truth at the sweep "
+      "start) and write DIR/pcd/*.pcd with a per-point time t (s from the sweep start) and ring");
+  app.add_flag("--no-sweep-motion", sweep_motion_off, "One pose per sweep (overrides --realism)")
+      ->excludes(motion_on);
+  app.add_option("--sweep-start", sweep_start,
+                 "Azimuth of the first firing, degrees (0 forward, 90 left; Velodyne: 180)")
+      ->check(CLI::Range(-360.0, 360.0));
+  app.add_option("--sweep-direction", sweep_direction,
+                 "Rotation seen from above: ccw (the simulator's default) | cw (Velodyne, Ouster)")
+      ->check(CLI::IsMember({"cw", "ccw"}));
+  app.add_option(
+         "--self-hits", self_hits,
+         "Ego vehicle parts that return points: none | roof-rack (the real drive's: 1-1.8 m "
+         "behind the sensor)")
+      ->check(CLI::IsMember(sim::EgoBody::preset_names()));
+  app.add_option("--mount-tilt", mount_tilt,
+                 "Sensor mount rotation ROLL,PITCH in degrees (e.g. 1,0; a negative roll as "
+                 "--mount-tilt=-1,0.5)");
+  app.add_option("--drop-frames", drop_frames,
+                 "Probability that a frame is dropped (irregular spacing between files)")
+      ->check(CLI::Range(0.0, 0.95));
+  app.add_option("--max-gap", max_gap, "Longest run of dropped frames (default 3)")
+      ->check(CLI::Range(1, 100));
+  auto* lead = app.add_flag("--lead-vehicle", lead_on,
+                            "A car ahead in the ego lane with a slowly varying gap");
+  app.add_flag("--no-lead-vehicle", lead_off, "No lead car (overrides --realism)")->excludes(lead);
+  app.add_option("--oncoming", oncoming, "Oncoming cars per km")->check(CLI::Range(0.0, 200.0));
+  app.add_option("--pedestrians", pedestrians, "Pedestrians on the sidewalks per km")
+      ->check(CLI::Range(0.0, 200.0));
+  app.add_option("--districts", districts,
+                 "Shares URBAN,SUBURBAN,GREEN of the stretches that are not open highway "
+                 "(default 0.55,0.3,0.15)");
+  app.add_option("--vegetation", vegetation,
+                 "Multiplier of the probability of trees, bushes and hedges (default 1)")
+      ->check(CLI::Range(0.0, 10.0));
+  app.add_option("--ground-bumps", ground_bumps,
+                 "Amplitude of short (2-5 m) ground bumps on the road, m (twice that off it)")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--grass-height", grass_height,
+                 "Grass blade height, m: returns come from near the blade tops")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--foliage-depth", foliage_depth,
+                 "Mean depth a beam travels into foliage before returning, m")
+      ->check(CLI::Range(0.0, 1.0));
   app.add_option("--output,-o", output, "Output folder")->required();
   CLI11_PARSE(app, argc, argv);
 
@@ -168,10 +271,47 @@ int main(int argc, char** argv) {
     fleet_opt.lane_offset = lane_offset;
     const auto vehicles = sim::plan_fleet(velo, first, last - first, fleet_opt);
 
-    auto model_opt = sim::LidarModel::from_name(sensor);
-    sim::LidarModel model = *model_opt;
+    // Sensor, rig, world, traffic and frame drops: the realism preset, then single overrides.
+    sim::RealismSettings real;
+    real.model = *sim::LidarModel::from_name(sensor);
+    real.world.density = density;
+    sim::apply_realism(realism, real);
+    sim::LidarModel& model = real.model;
+    sim::SensorRig& rig = real.rig;
     if (noise >= 0) model.range_noise_sigma = noise;
     if (dropout >= 0) model.dropout = dropout;
+    if (sweep_motion_on || sweep_motion_off) rig.sweep.motion = sweep_motion_on;
+    if (sweep_start) rig.sweep.start_azimuth_deg = *sweep_start;
+    if (!sweep_direction.empty()) rig.sweep.clockwise = sweep_direction == "cw";
+    if (!self_hits.empty()) rig.body = *sim::EgoBody::from_name(self_hits);
+    if (!mount_tilt.empty()) {
+      const auto tilt = parse_numbers(mount_tilt, 2, "--mount-tilt");
+      rig.mount.roll_deg = tilt[0];
+      rig.mount.pitch_deg = tilt[1];
+    }
+    if (drop_frames) real.drops.probability = *drop_frames;
+    if (max_gap) real.drops.max_gap = *max_gap;
+    if (lead_on || lead_off) real.traffic.lead_vehicle = lead_on;
+    if (oncoming) real.traffic.oncoming_per_km = *oncoming;
+    if (pedestrians) real.traffic.pedestrians_per_km = *pedestrians;
+    if (!districts.empty()) real.world.district_weights = parse_triple(districts, "--districts");
+    if (vegetation) real.world.vegetation_density = *vegetation;
+    if (ground_bumps) real.world.ground_bump_amplitude = *ground_bumps;
+    if (grass_height) real.world.grass_height = *grass_height;
+    if (foliage_depth) real.world.foliage_penetration = *foliage_depth;
+    model.validate();
+    rig.validate();
+    real.traffic.validate();
+    real.drops.validate();
+    spdlog::info(
+        "realism {}: sweep motion {}, start {} deg {}, self-hits {} boxes, mount roll {} pitch {} "
+        "deg, range noise {} m, bumps {} m, grass {} m, foliage {} m, lead car {}, "
+        "oncoming {}/km, pedestrians {}/km, frame drops {} (max gap {})",
+        realism, rig.sweep.motion, rig.sweep.start_azimuth_deg, rig.sweep.clockwise ? "cw" : "ccw",
+        rig.body.boxes.size(), rig.mount.roll_deg, rig.mount.pitch_deg, model.range_noise_sigma,
+        real.world.ground_bump_amplitude, real.world.grass_height, real.world.foliage_penetration,
+        real.traffic.lead_vehicle, real.traffic.oncoming_per_km, real.traffic.pedestrians_per_km,
+        real.drops.probability, real.drops.max_gap);
 
     const auto t_world = std::chrono::steady_clock::now();
     // The world covers the base trajectory around all vehicles' windows (plus 150 m), then the
@@ -185,8 +325,7 @@ int main(int argc, char** argv) {
     }
     std::vector<std::vector<Eigen::Isometry3d>> paths{sim::trajectory_window(velo, lo, hi, 150.0)};
     for (const auto& v : vehicles) paths.push_back(v.sensor_poses);
-    sim::WorldOptions wopt;
-    wopt.density = density;
+    sim::WorldOptions wopt = real.world;
     wopt.sensor_height = model.mount_height;
     const sim::World world(paths, seed, wopt);
     spdlog::info("world: {} objects in {} tiles, built in {:.2f} s", world.objects().size(),
@@ -214,7 +353,15 @@ int main(int argc, char** argv) {
       }
       std::fclose(f);
     }
-    StatsAccumulator acc;
+    // Moving actors along vehicle 0's drive (other fleet vehicles see the same actors on their
+    // own clocks).
+    std::unique_ptr<sim::Traffic> traffic;
+    if (real.traffic.any()) {
+      traffic = std::make_unique<sim::Traffic>(vehicles[0].sensor_poses, 0.1, world,
+                                               sim::hash_combine(seed, 77), real.traffic);
+      spdlog::info("traffic: {} actors", traffic->size());
+    }
+    sim::ScanStatisticsMean simulated;
     double raycast_s = 0;
     std::size_t frames_total = 0, points_total = 0;
     for (std::size_t k = 0; k < vehicles.size(); ++k) {
@@ -227,6 +374,15 @@ int main(int argc, char** argv) {
       wo.model = model;
       wo.seed = sim::hash_combine(seed, 1000 + k);
       wo.velo_to_cam = tr;
+      wo.rig = rig;
+      wo.traffic = traffic.get();
+      wo.write_pcd = rig.sweep.motion;
+      if (real.drops.probability > 0) {
+        wo.frames = sim::select_frames(vehicles[k].sensor_poses.size(), real.drops,
+                                       sim::hash_combine(seed, 2000 + k));
+        spdlog::info("{}: {} of {} frames kept", dir, wo.frames.size(),
+                     vehicles[k].sensor_poses.size());
+      }
       auto last_report = std::chrono::steady_clock::now();
       wo.progress = [&](std::size_t done, std::size_t total) {
         const auto now = std::chrono::steady_clock::now();
@@ -237,7 +393,7 @@ int main(int argc, char** argv) {
       };
       if (!compare_real.empty()) {
         wo.on_scan = [&](std::size_t, const litamin2::PointCloud& c) {
-          acc.add(sim::compute_scan_statistics(c));
+          simulated.add(sim::compute_scan_statistics(c, model.elevations_deg));
         };
       }
       const auto r = sim::write_sequence(dir, raycaster, vehicles[k].sensor_poses, wo);
@@ -251,19 +407,13 @@ int main(int argc, char** argv) {
                  tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
 
     if (!compare_real.empty()) {
-      io::KittiBinOptions bo;
-      const auto real = sim::compute_scan_statistics(io::read_kitti_bin(compare_real, bo));
-      const double n = static_cast<double>(acc.n);
-      std::printf("%-22s %12s %14s\n", "statistic", "real", "simulated(mean)");
-      std::printf("%-22s %12zu %14.0f\n", "points", real.points, acc.points / n);
-      std::printf("%-22s %12zu %14.0f\n", "1 m voxels", real.voxels_1m, acc.v1 / n);
-      std::printf("%-22s %12zu %14.0f\n", "2 m voxels", real.voxels_2m, acc.v2 / n);
-      std::printf("%-22s %12zu %14.0f\n", "3 m voxels", real.voxels_3m, acc.v3 / n);
-      std::printf("%-22s %12zu %14.0f\n", "3 m voxels >= 5 pts", real.voxels_3m_min5, acc.v3m5 / n);
-      std::printf("%-22s %12zu %14.0f\n", "5 m voxels", real.voxels_5m, acc.v5 / n);
-      std::printf("%-22s %12.1f %14.1f\n", "range median [m]", real.range_median, acc.r50 / n);
-      std::printf("%-22s %12.1f %14.1f\n", "range p90 [m]", real.range_p90, acc.r90 / n);
-      std::printf("%-22s %12.1f %14.1f\n", "range max [m]", real.range_max, acc.rmax / n);
+      const auto real_stats = real_statistics(compare_real, model.elevations_deg);
+      std::printf("%-28s %12s %14s\n", "statistic",
+                  ("real(" + std::to_string(real_stats.count()) + ")").c_str(),
+                  ("sim(" + std::to_string(simulated.count()) + ")").c_str());
+      for (const auto& [label, value] : real_stats.rows()) {
+        std::printf("%-28s %12.3f %14.3f\n", label.c_str(), value, simulated.mean(label));
+      }
     }
     return 0;
   } catch (const io::IoError& e) {

@@ -4,7 +4,7 @@
 /// (pinged only while the service reports itself healthy) and a STATUS every 5 s.
 
 #include "litamin2/service/sd_notify.hpp"
-#include "litamin2/service/shutdown_signals.hpp"
+#include "litamin2/service/service_signals.hpp"
 
 #include <chrono>
 #include <functional>
@@ -26,6 +26,8 @@ class ServiceLoop {
     std::function<std::string(Clock::time_point)> summary;
     /// Logged as an error at every turn the watchdog is withheld.
     std::string stall_message;
+    /// Called on SIGHUP, between RELOADING=1 and READY=1 (may be empty: nothing to reload).
+    std::function<void()> reload;
   };
 
   /// The notifier of $NOTIFY_SOCKET; the watchdog pings only if `watchdog_enabled` (the
@@ -38,10 +40,14 @@ class ServiceLoop {
   const WatchdogPinger& watchdog() const { return watchdog_; }
 
   /// Turns every `period` (a STATUS at the first turn, then every 5 s) until SIGTERM or SIGINT
-  /// arrives (logged and returned) or hooks.poll returns false (returns 0).
-  int run(ShutdownSignals& signals, const Hooks& hooks, std::chrono::milliseconds period);
+  /// arrives (logged and returned) or hooks.poll returns false (returns 0). SIGHUP runs
+  /// hooks.reload, framed by RELOADING=1 (with MONOTONIC_USEC, as systemd's reload protocol
+  /// asks) and READY=1, and the loop goes on.
+  int run(ServiceSignals& signals, const Hooks& hooks, std::chrono::milliseconds period);
 
  private:
+  void reload(const Hooks& hooks);
+
   SdNotifier notifier_;
   WatchdogPinger watchdog_;
 };

@@ -38,6 +38,11 @@ struct LidarModel {
   /// Upper corner of the ego-vehicle box.
   Eigen::Vector3d ego_box_max = Eigen::Vector3d(1.2, 0.8, -0.5);
 
+  /// Throws std::invalid_argument for no beams, an elevation outside [-90, 90] degrees, fewer
+  /// than 8 azimuth steps, ranges with 0 <= min < max not holding, a negative noise, dropout
+  /// outside [0, 1] or a mount height <= 0.
+  void validate() const;
+
   /// Number of beams (rings).
   std::size_t beams() const { return elevations_deg.size(); }
   /// Rays cast per scan (beams x azimuth steps).

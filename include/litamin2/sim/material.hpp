@@ -19,6 +19,7 @@ enum class Material : std::uint8_t {
   kBark,
   kCarPaint,
   kCarGlass,
+  kClothing,
   kCount
 };
 

@@ -12,6 +12,9 @@
 #include "litamin2/core/point_cloud.hpp"
 #include "litamin2/sim/lidar_model.hpp"
 #include "litamin2/sim/material.hpp"
+#include "litamin2/sim/sensor_rig.hpp"
+#include "litamin2/sim/simulated_scan.hpp"
+#include "litamin2/sim/traffic.hpp"
 #include "litamin2/sim/world.hpp"
 
 namespace litamin2::sim {
@@ -39,6 +42,20 @@ struct RayHit {
   float reflectivity = 0.0f;
 };
 
+/// One sweep to cast: where the vehicle is at its start and end, and what moves around it.
+struct SweepRequest {
+  /// Vehicle pose (vehicle to world, z up) at the sweep start; with an untilted mount it is
+  /// the sensor pose.
+  Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
+  /// Vehicle pose at the sweep end (start + SweepOptions::duration); used only when the rig's
+  /// sweep has motion, each column then leaving from the pose interpolated between the two.
+  Eigen::Isometry3d end = Eigen::Isometry3d::Identity();
+  /// Time of the sweep start on the traffic's clock, seconds.
+  double start_time = 0.0;
+  /// Moving actors (must outlive the call), or null for none.
+  const Traffic* traffic = nullptr;
+};
+
 /// Casts LiDAR scans in a World. Not thread-safe itself (scan() parallelises internally); the
 /// World must outlive it.
 class Raycaster {
@@ -64,6 +81,19 @@ class Raycaster {
   /// ordered beam by beam (top beam first), each beam by increasing azimuth.
   PointCloud scan(const Eigen::Isometry3d& sensor_pose, const LidarModel& model,
                   std::uint64_t scan_seed);
+
+  /// Simulates one revolution of `model` installed as `rig`: columns at the rig's azimuths,
+  /// each cast from its own pose when the sweep has motion; the rig's body returns self-hits;
+  /// the request's traffic is cast at each column's time. Each point is in the sensor frame of its
+  /// own firing (raw, as LiDAR drivers publish them: with motion the sweep is distorted, and a
+  /// deskew with the firing times carries it into the frame at the sweep start, request.start
+  /// times the mount rotation), with its firing time and ring;
+  /// ordered by firing time (column by column, top beam first) when the sweep has motion or a
+  /// non-default start/direction, else as scan(pose, ...) orders them. With a default rig and
+  /// start == end the points are exactly those of scan(request.start, model, scan_seed).
+  /// Throws std::invalid_argument for an invalid rig.
+  SimulatedScan scan(const SweepRequest& request, const LidarModel& model, const SensorRig& rig,
+                     std::uint64_t scan_seed);
 
   /// Tile scenes currently cached.
   std::size_t cached_tiles() const;

@@ -29,6 +29,15 @@ struct WorldOptions {
   double ground_resolution = 1.0;
   /// Standard deviation of the per-vertex ground roughness, metres.
   double ground_roughness = 0.02;
+  /// Amplitude of short bumps (2-5 m across: patches, sagging, ruts, lumpy verges) on and off
+  /// the road, metres; 0 = none. Makes the ground non-planar within a 3 m voxel.
+  double ground_bump_amplitude = 0.0;
+  /// Height of the grass blades, metres: a return from grass comes from the top 10 % of the
+  /// blades (a beam's footprint covers many of them); 0 = grass is a hard surface.
+  double grass_height = 0.0;
+  /// Mean depth a beam travels into foliage before it returns (exponential, at most 1 m),
+  /// metres; 0 = returns from the first leaf triangle hit.
+  double foliage_penetration = 0.0;
   /// Amplitude of low-frequency terrain (hills, embankments) away from the road, metres.
   double terrain_amplitude = 2.0;
   /// Half width of the asphalt around each trajectory, metres.
@@ -41,6 +50,8 @@ struct WorldOptions {
   std::array<double, 3> district_weights = {0.55, 0.3, 0.15};
   /// Multiplies the probability of every object (0 = ground only).
   double density = 1.0;
+  /// Further multiplies the probability of trees, bushes and hedges.
+  double vegetation_density = 1.0;
   /// Enables building facades.
   bool buildings = true;
   /// Enables trees, bushes and hedges.
@@ -52,6 +63,9 @@ struct WorldOptions {
 
   /// A world of ground only: no objects, no roughness, no terrain, no kerb (for tests).
   static WorldOptions ground_only();
+  /// Throws std::invalid_argument for a non-positive tile size or ground resolution, or a
+  /// negative or non-finite height, roughness, amplitude, density or width.
+  void validate() const;
 };
 
 /// Integer coordinates of a world tile: it covers [x, x+1) x [y, y+1) times tile_size.

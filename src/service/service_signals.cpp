@@ -1,4 +1,4 @@
-#include "litamin2/service/shutdown_signals.hpp"
+#include "litamin2/service/service_signals.hpp"
 
 #include <pthread.h>
 
@@ -7,18 +7,19 @@
 
 namespace litamin2::service {
 
-ShutdownSignals::ShutdownSignals() {
+ServiceSignals::ServiceSignals() {
   sigemptyset(&signals_);
   sigaddset(&signals_, SIGTERM);
   sigaddset(&signals_, SIGINT);
+  sigaddset(&signals_, SIGHUP);
   pthread_sigmask(SIG_BLOCK, &signals_, &previous_);
 }
 
-ShutdownSignals::~ShutdownSignals() {
+ServiceSignals::~ServiceSignals() {
   pthread_sigmask(SIG_SETMASK, &previous_, nullptr);
 }
 
-int ShutdownSignals::wait_for(std::chrono::milliseconds timeout) {
+int ServiceSignals::wait_for(std::chrono::milliseconds timeout) {
   if (timeout.count() < 0) timeout = std::chrono::milliseconds(0);
   timespec ts;
   ts.tv_sec = static_cast<time_t>(timeout.count() / 1000);
