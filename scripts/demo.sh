@@ -11,7 +11,9 @@
 # MERGE_BOUND (metres, default 1.0: largest allowed error of a merged vehicle's keyframes in the
 # first vehicle's frame), MAP_ODOM_BOUND (metres, default 1.0: the same for every pose the
 # aggregator published live on rt/<vehicle>/map_odom in the map frame), BUILD_DIR,
-# DEMO_SKIP_BUILD.
+# DEMO_SKIP_BUILD, SECURE=1 (the whole chain with DDS-Security: a fleet PKI made by
+# scripts/litamin2-pki in $OUT/pki, one identity per vehicle, the daemon, the aggregator and an
+# operator for the demo's probes; the secured litamin2d.yaml and aggregator.yaml stay in $OUT).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 if [ -z "${DEMO_SKIP_BUILD:-}" ]; then  # the fleet ctest runs it on an existing build
@@ -40,6 +42,25 @@ for s in "${streams[@]}"; do
   "$bin/odometry/litamin2-odometry" --output "offline_$s" "fleet/$s" | sed "s/^/  $s: /"
 done
 
+# With SECURE=1: the fleet's PKI, and a --pki/--identity pair for each participant.
+security_section() { :; }
+secure=()
+operator=()
+if [ "${SECURE:-0}" = 1 ]; then
+  echo "== SECURE=1: a fleet PKI in $out/pki (scripts/litamin2-pki)"
+  rm -rf pki
+  "$root/scripts/litamin2-pki" init pki --domains "$domain-$domain" | sed 's/^/  /'
+  for s in "${streams[@]}"; do
+    "$root/scripts/litamin2-pki" vehicle pki "$s" --streams "$s" | sed 's/^/  /'
+  done
+  "$root/scripts/litamin2-pki" daemon pki litamin2d --streams "vehicle_*" | sed 's/^/  /'
+  "$root/scripts/litamin2-pki" aggregator pki aggregator | sed 's/^/  /'
+  "$root/scripts/litamin2-pki" operator pki operator | sed 's/^/  /'
+  security_section() { "$root/scripts/litamin2-pki" config pki "$1"; }
+  secure=(--pki pki)
+  operator=(--pki pki --identity operator)
+fi
+
 cat > litamin2d.yaml <<YAML
 # Demo config: the shipped default (discover every rt/*/points, loopback-only transport) on
 # domain $domain.
@@ -48,6 +69,7 @@ discovery: {enabled: true, pattern: "rt/*/points"}
 threads: 2
 queue_depth: 100
 outputs: {status_period_s: 1.0}
+$(security_section litamin2d)
 YAML
 
 cat > aggregator.yaml <<YAML
@@ -55,6 +77,7 @@ cat > aggregator.yaml <<YAML
 dds: {domain: $domain, profile: loopback}
 store: {path: aggregator.db}
 watchdog: {enabled: false}
+$(security_section aggregator)
 YAML
 
 daemon_pid=""
@@ -74,7 +97,7 @@ rm -f aggregator.db aggregator.db-wal aggregator.db-shm
 aggregator_pid=$!
 echo "== recording the aggregator's map-frame odometry (rt/<vehicle>/map_odom)"
 rm -f map_odom_*.txt
-"$map_odom_probe" --domain "$domain" --profile loopback --out map_odom_ \
+"$map_odom_probe" --domain "$domain" --profile loopback --out map_odom_ "${operator[@]}" \
   $(for s in "${streams[@]}"; do echo --stream "$s"; done) > map_odom_probe.log 2>&1 &
 map_odom_pid=$!
 
@@ -84,18 +107,31 @@ daemon_pid=$!
 probe_args=()
 for s in "${streams[@]}"; do probe_args+=(--stream "$s=offline_$s/poses_kitti.txt"); done
 rm -f probe.ready
-"$probe" --domain "$domain" --profile loopback --expect "$frames" --timeout 600 \
+"$probe" --domain "$domain" --profile loopback --expect "$frames" --timeout 600 "${operator[@]}" \
   --ready-file probe.ready --poses-out received_ "${probe_args[@]}" > probe.log 2>&1 &
 probe_pid=$!
 
 echo "== replaying the fleet at $rate Hz into rt/<vehicle>/points"
-replay_args=()
-for s in "${streams[@]}"; do replay_args+=(--stream "$s"); done
 start=$(date +%s.%N)
-"$bin/replay/litamin2-replay" --domain "$domain" --profile loopback --rate "$rate" --timeout 60 \
-  --start-delay 2 \
-  "${replay_args[@]}" $(for s in "${streams[@]}"; do echo "fleet/$s"; done) > replay.log 2>&1 \
-  || { cat replay.log daemon.log; exit 1; }
+if [ "${SECURE:-0}" = 1 ]; then
+  # One replay per vehicle, each with its vehicle's identity (it may publish only its stream).
+  replay_pids=()
+  for s in "${streams[@]}"; do
+    "$bin/replay/litamin2-replay" --domain "$domain" --profile loopback --rate "$rate" \
+      --timeout 60 --start-delay 4 "${secure[@]}" --identity "$s" --stream "$s" "fleet/$s" \
+      > "replay_$s.log" 2>&1 &
+    replay_pids+=($!)
+  done
+  for p in "${replay_pids[@]}"; do wait "$p" || { cat replay_*.log daemon.log; exit 1; }; done
+  cat replay_*.log > replay.log
+else
+  replay_args=()
+  for s in "${streams[@]}"; do replay_args+=(--stream "$s"); done
+  "$bin/replay/litamin2-replay" --domain "$domain" --profile loopback --rate "$rate" --timeout 60 \
+    --start-delay 2 \
+    "${replay_args[@]}" $(for s in "${streams[@]}"; do echo "fleet/$s"; done) > replay.log 2>&1 \
+    || { cat replay.log daemon.log; exit 1; }
+fi
 probe_rc=0
 wait "$probe_pid" || probe_rc=$?
 probe_pid=""
@@ -169,4 +205,6 @@ echo "  logs and poses: $out (daemon.log, aggregator.log, probe.log, received_*,
 [ "$probe_rc" -eq 0 ] && [ "$daemon_rc" -eq 0 ] && [ "$aggregator_rc" -eq 0 ] && [ "$stored" -ge "$expected" ] \
   && [ "$report_rc" -eq 0 ] && [ "$map_odom_rc" -eq 0 ] ||
   { echo "demo FAILED (probe $probe_rc, daemon $daemon_rc, aggregator $aggregator_rc, stored $stored of $expected, report $report_rc, map_odom $map_odom_rc)"; exit 1; }
+[ "${SECURE:-0}" = 1 ] &&
+  echo "  SECURE=1: PKI in $out/pki, secured configs $out/litamin2d.yaml and $out/aggregator.yaml"
 echo "demo OK"

@@ -16,6 +16,13 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
   YamlSection root(node, "");
 
   config.dds = service::transport_config_from_yaml(root.child("dds"));
+  config.security = service::security_config_from_yaml(root.child("security"));
+  {
+    YamlSection limits(root.child("limits"), "limits");
+    limits.read_range("max_distributions_per_patch", config.limits.max_distributions_per_patch, 1,
+                      10'000'000);
+    limits.reject_unknown();
+  }
 
   {
     YamlSection topics(root.child("topics"), "topics");

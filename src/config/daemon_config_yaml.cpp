@@ -4,6 +4,7 @@
 #include "litamin2/config/service_config_yaml.hpp"
 #include "litamin2/config/tracker_config_yaml.hpp"
 #include "litamin2/config/yaml_section.hpp"
+#include "litamin2/core/value_checks.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -19,14 +20,15 @@ using config::YamlSection;
 
 namespace {
 
-/// `over` merged into a copy of `base`: mappings key by key, anything else replaced.
-YAML::Node merge(const YAML::Node& base, const YAML::Node& over) {
+/// `over` merged into a copy of `base`: mappings key by key, anything else replaced; `path`
+/// names `over` in errors.
+YAML::Node merge(const YAML::Node& base, const YAML::Node& over, const std::string& path) {
   if (!over || over.IsNull()) return base ? YAML::Clone(base) : YAML::Node();
   if (!base || !base.IsMap() || !over.IsMap()) return YAML::Clone(over);
   YAML::Node out = YAML::Clone(base);
   for (const auto& entry : over) {
-    const std::string key = entry.first.as<std::string>();
-    out[key] = merge(base[key], entry.second);
+    const std::string key = config::key_name(entry.first, path);
+    out[key] = merge(base[key], entry.second, path + "." + key);
   }
   return out;
 }
@@ -74,6 +76,8 @@ Eigen::Isometry3d parse_extrinsic(const YAML::Node& node, const std::string& pat
     if ((r.transpose() * r - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-6 ||
         r.determinant() < 0)
       throw ConfigError(path + ": the top-left 3x3 block is not a rotation matrix");
+    if (const auto why = checks::position_error(m.topRightCorner<3, 1>()))
+      throw ConfigError(path + ": the translation " + *why);
     pose.matrix() = m;
     return pose;
   }
@@ -100,6 +104,8 @@ Eigen::Isometry3d parse_extrinsic(const YAML::Node& node, const std::string& pat
                    Eigen::AngleAxisd(angles.x(), Eigen::Vector3d::UnitX()))
                       .toRotationMatrix();
   if (xyz) pose.translation() = *xyz;
+  if (const auto why = checks::position_error(pose.translation()))
+    throw ConfigError(path + ".xyz: " + *why);
   return pose;
 }
 
@@ -111,6 +117,12 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
   YamlSection root(node, "");
 
   config.dds = service::transport_config_from_yaml(root.child("dds"));
+  config.security = service::security_config_from_yaml(root.child("security"));
+  {
+    YamlSection limits(root.child("limits"), "limits");
+    limits.read_range("max_points_per_scan", config.limits.max_points_per_scan, 1, 100'000'000);
+    limits.reject_unknown();
+  }
 
   // tracker (global); kept as YAML so streams can override single keys.
   const YAML::Node tracker_node = root.child("tracker");
@@ -141,7 +153,8 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
       const YAML::Node overrides = s.child("tracker");
       if (overrides && !overrides.IsNull() && !overrides.IsMap())
         throw ConfigError(path + ".tracker: expected a mapping of tracker keys");
-      stream.tracker = parse_tracker(merge(tracker_node, overrides), path + ".tracker");
+      stream.tracker =
+          parse_tracker(merge(tracker_node, overrides, path + ".tracker"), path + ".tracker");
       s.reject_unknown();
       config.streams.push_back(std::move(stream));
     }

@@ -36,6 +36,16 @@ TransportConfig transport_config_from_yaml(const YAML::Node& node) {
   return config;
 }
 
+SecurityConfig security_config_from_yaml(const YAML::Node& node) {
+  SecurityConfig config;
+  YamlSection security(node, "security");
+  security.read("enabled", config.enabled);
+  for (const auto& [key, member] : SecurityConfig::kFiles) security.read(key, config.*member);
+  security.reject_unknown();
+  if (const auto why = security_config_error(config)) throw ConfigError(*why);
+  return config;
+}
+
 WatchdogConfig watchdog_config_from_yaml(const YAML::Node& node, double max_stall_timeout_s) {
   WatchdogConfig config;
   YamlSection watchdog(node, "watchdog");

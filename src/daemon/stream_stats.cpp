@@ -25,9 +25,15 @@ void StreamStats::record_received() {
   ++counters_.frames_received;
 }
 
-void StreamStats::record_bad_message() {
+void StreamStats::record_bad_message(const std::string& reason) {
+  record_bad_messages(reason, 1);
+}
+
+void StreamStats::record_bad_messages(const std::string& reason, std::uint64_t count) {
+  if (count == 0) return;
   std::lock_guard lock(mutex_);
-  ++counters_.bad_messages;
+  counters_.bad_messages += count;
+  counters_.bad_message_reasons[reason] += count;
 }
 
 void StreamStats::record_out_of_order() {

@@ -4,7 +4,7 @@
 
 namespace litamin2::dds {
 
-diagnostic_msgs::msg::KeyValue key_value(const char* key, const std::string& value) {
+diagnostic_msgs::msg::KeyValue key_value(const std::string& key, const std::string& value) {
   diagnostic_msgs::msg::KeyValue kv;
   kv.key(key);
   kv.value(value);

@@ -1,7 +1,9 @@
-/// Forwarding of Fast DDS's log to spdlog (see participant_factory.hpp).
+/// Forwarding of Fast DDS's log to spdlog, and its shutdown before spdlog goes (see
+/// participant_factory.hpp).
 
 #include <spdlog/spdlog.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <fastdds/dds/log/Log.hpp>
 #include <memory>
@@ -34,27 +36,52 @@ class SpdlogConsumer : public fdds::LogConsumer {
   }
 };
 
-/// At exit: delivers what Fast DDS's log thread still holds while spdlog is alive, then stops
-/// that thread, so that it cannot call into spdlog's logger during static destruction (seen as a
-/// segfault after main returned when a participant's teardown logged a warning).
-void stop_fastdds_log() {
-  fdds::Log::Flush();
-  fdds::Log::KillThread();
+/// After stop_fastdds_log: entries logged while the process ends go straight to stderr, with
+/// nothing that static destruction could have destroyed.
+class StderrConsumer : public fdds::LogConsumer {
+ public:
+  void Consume(const fdds::Log::Entry& entry) override {
+    if (entry.kind == fdds::Log::Kind::Info) return;
+    std::fprintf(stderr, "fastdds [%s] %s\n", entry.context.category ? entry.context.category : "",
+                 entry.message.c_str());
+  }
+};
+
+std::mutex& state_mutex() {
+  static std::mutex mutex;
+  return mutex;
 }
+bool forwarding = false;
+bool stopped = false;
 
 }  // namespace
 
 void forward_fastdds_log_to_spdlog() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    // Both spdlog's registry and Fast DDS's log resources exist before the exit handler is
-    // registered, so the handler runs before either is destroyed.
-    spdlog::default_logger();
-    fdds::Log::ClearConsumers();
-    fdds::Log::RegisterConsumer(std::make_unique<SpdlogConsumer>());
-    fdds::Log::SetVerbosity(fdds::Log::Kind::Warning);
-    std::atexit(stop_fastdds_log);
-  });
+  std::lock_guard lock(state_mutex());
+  if (forwarding || stopped) return;
+  // spdlog's registry is constructed before the exit handler is registered, so the handler
+  // runs before the registry is destroyed (the order of static destruction and atexit handlers
+  // is the reverse of their completion). The same holds for Fast DDS's log resources, which
+  // ClearConsumers() constructs.
+  spdlog::default_logger();
+  fdds::Log::ClearConsumers();
+  fdds::Log::RegisterConsumer(std::make_unique<SpdlogConsumer>());
+  fdds::Log::SetVerbosity(fdds::Log::Kind::Warning);
+  forwarding = true;
+  std::atexit(stop_fastdds_log);
+}
+
+void stop_fastdds_log() {
+  std::lock_guard lock(state_mutex());
+  if (!forwarding || stopped) return;
+  stopped = true;
+  // Deliver what is queued while spdlog still exists, then make sure no entry reaches it:
+  // ClearConsumers() waits for the log thread to leave the consumers, and the thread is joined.
+  fdds::Log::Flush();
+  spdlog::default_logger()->flush();
+  fdds::Log::ClearConsumers();
+  fdds::Log::RegisterConsumer(std::make_unique<StderrConsumer>());
+  fdds::Log::KillThread();
 }
 
 }  // namespace litamin2::dds

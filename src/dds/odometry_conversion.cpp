@@ -1,8 +1,11 @@
 #include "litamin2/dds/odometry_conversion.hpp"
 
 #include "litamin2/core/so3.hpp"
+#include "litamin2/core/value_checks.hpp"
 #include "litamin2/dds/pose_conversion.hpp"
 #include "litamin2/dds/time_conversion.hpp"
+
+#include <cmath>
 
 namespace litamin2::dds {
 
@@ -34,15 +37,15 @@ std::array<double, 36> to_row_major(const Matrix6d& m) {
   return out;
 }
 
-Matrix6d from_row_major(const std::array<double, 36>& a) {
+}  // namespace
+
+Matrix6d ros_covariance_matrix(const std::array<double, 36>& a) {
   Matrix6d m;
   for (int r = 0; r < 6; ++r) {
     for (int c = 0; c < 6; ++c) m(r, c) = a[static_cast<std::size_t>(6 * r + c)];
   }
   return m;
 }
-
-}  // namespace
 
 std::array<double, 36> ros_pose_covariance(const Matrix6d& left_covariance,
                                            const Eigen::Isometry3d& pose) {
@@ -55,7 +58,7 @@ std::array<double, 36> ros_pose_covariance(const Matrix6d& left_covariance,
 Matrix6d left_covariance_from_ros(const std::array<double, 36>& ros_covariance,
                                   const Eigen::Isometry3d& pose) {
   const Matrix6d j = ros_to_left_jacobian(pose);
-  Matrix6d left = j * from_row_major(ros_covariance) * j.transpose();
+  Matrix6d left = j * ros_covariance_matrix(ros_covariance) * j.transpose();
   return 0.5 * (left + left.transpose());
 }
 
@@ -80,10 +83,12 @@ const char* to_string(OdometryError error) {
       return "none";
     case OdometryError::kBadPose:
       return "bad_pose";
-    case OdometryError::kNonFiniteCovariance:
-      return "non_finite_covariance";
+    case OdometryError::kBadCovariance:
+      return "bad_covariance";
     case OdometryError::kBadStamp:
       return "bad_stamp";
+    case OdometryError::kBadTwist:
+      return "bad_twist";
   }
   return "unknown";
 }
@@ -96,26 +101,25 @@ OdometryConversion from_odometry(const nav_msgs::msg::Odometry& msg) {
     return out;
   };
   const geometry_msgs::msg::Pose& p = msg.pose().pose();
-  const double v[] = {p.position().x(),    p.position().y(),    p.position().z(),
-                      p.orientation().x(), p.orientation().y(), p.orientation().z(),
-                      p.orientation().w()};
-  for (double x : v)
-    if (!std::isfinite(x)) return reject(OdometryError::kBadPose, "non-finite pose");
-  if (p.orientation().x() == 0.0 && p.orientation().y() == 0.0 && p.orientation().z() == 0.0 &&
-      p.orientation().w() == 0.0)
-    return reject(OdometryError::kBadPose, "zero quaternion");
-  for (double c : msg.pose().covariance())
-    if (!std::isfinite(c))
-      return reject(OdometryError::kNonFiniteCovariance, "non-finite pose covariance");
+  if (const auto why = pose_msg_error(p)) return reject(OdometryError::kBadPose, "pose: " + *why);
+  if (const auto why = checks::covariance_error<6>(ros_covariance_matrix(msg.pose().covariance())))
+    return reject(OdometryError::kBadCovariance, "pose covariance " + *why);
   if (msg.header().stamp().nanosec() >= 1'000'000'000u)
     return reject(OdometryError::kBadStamp,
                   "stamp nanosec " + std::to_string(msg.header().stamp().nanosec()) + " >= 1e9");
+  const auto& twist = msg.twist().twist();
+  const double t[] = {twist.linear().x(),  twist.linear().y(),  twist.linear().z(),
+                      twist.angular().x(), twist.angular().y(), twist.angular().z()};
+  for (double x : t)
+    if (!std::isfinite(x)) return reject(OdometryError::kBadTwist, "non-finite twist");
+  for (double x : msg.twist().covariance())
+    if (!std::isfinite(x)) return reject(OdometryError::kBadTwist, "non-finite twist covariance");
   OdometrySample& sample = out.sample;
   sample.stamp = to_stamp(msg.header().stamp());
   sample.frame_id = msg.header().frame_id();
   sample.child_frame_id = msg.child_frame_id();
   sample.pose = from_pose_msg(p);
-  sample.ros_covariance = from_row_major(msg.pose().covariance());
+  sample.ros_covariance = ros_covariance_matrix(msg.pose().covariance());
   sample.left_covariance = left_covariance_from_ros(msg.pose().covariance(), sample.pose);
   return out;
 }

@@ -1,5 +1,7 @@
 #include "litamin2/dds/participant_factory.hpp"
 
+#include "litamin2/dds/security_files.hpp"
+
 #include <spdlog/spdlog.h>
 
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
@@ -122,6 +124,7 @@ fdds::DomainParticipantQos participant_qos(const ParticipantConfig& config) {
       break;
     }
   }
+  if (config.transport != TransportProfile::kXml) add_security_properties(config.security, qos);
   return qos;
 }
 
@@ -140,6 +143,9 @@ ParticipantPtr create_participant(const ParticipantConfig& config, std::string* 
     if (error) *error = std::move(message);
     return ParticipantPtr();
   };
+  if (const auto why = security_files_error(config.security, static_cast<int>(config.domain_id))) {
+    return fail(*why);
+  }
   fdds::DomainParticipant* participant = nullptr;
   if (config.transport == TransportProfile::kXml) {
     if (factory->load_XML_profiles_file(config.xml_file) != ReturnCode_t::RETCODE_OK) {
@@ -151,8 +157,14 @@ ParticipantPtr create_participant(const ParticipantConfig& config, std::string* 
       return fail("no participant profile '" + config.xml_profile + "' in '" + config.xml_file +
                   "'");
     }
-    participant = factory->create_participant_with_profile(
-        static_cast<fdds::DomainId_t>(config.domain_id), config.xml_profile, listener, mask);
+    if (config.security.enabled) {
+      add_security_properties(config.security, qos);
+      participant = factory->create_participant(static_cast<fdds::DomainId_t>(config.domain_id),
+                                                qos, listener, mask);
+    } else {
+      participant = factory->create_participant_with_profile(
+          static_cast<fdds::DomainId_t>(config.domain_id), config.xml_profile, listener, mask);
+    }
   } else {
     participant = factory->create_participant(static_cast<fdds::DomainId_t>(config.domain_id),
                                               participant_qos(config), listener, mask);

@@ -8,8 +8,10 @@ namespace litamin2::dds {
 namespace fdds = eprosima::fastdds::dds;
 
 ParticipantConfig participant_config(const service::TransportConfig& config,
+                                     const service::SecurityConfig& security,
                                      const std::string& name) {
   ParticipantConfig pc;
+  pc.security = security;
   pc.domain_id = static_cast<std::uint32_t>(config.domain);
   pc.name = name;
   pc.transport = config.profile;

@@ -163,6 +163,8 @@ const char* to_string(CloudError error) {
       return "bad_stamp";
     case CloudError::kBadTimeField:
       return "bad_time_field";
+    case CloudError::kNonFiniteIntensity:
+      return "non_finite_intensity";
   }
   return "unknown";
 }
@@ -368,10 +370,12 @@ void read_float_xyz(const sensor_msgs::msg::PointCloud2& msg, const std::array<F
 }
 
 /// Any layout: float32 or float64 coordinates in either byte order, and the intensity if
-/// `with_intensity` (any numeric type; non-finite intensities become 0).
-void read_any_layout(const sensor_msgs::msg::PointCloud2& msg,
-                     const std::array<FieldSpec, 4>& specs, bool with_intensity,
-                     const FieldSpec* time, std::vector<double>& raw_times, CloudConversion& out) {
+/// `with_intensity` (any numeric type; a non-finite one rejects the message), and the raw
+/// time values into `raw_times` if `time`.
+CloudError read_any_layout(const sensor_msgs::msg::PointCloud2& msg,
+                           const std::array<FieldSpec, 4>& specs, bool with_intensity,
+                           const FieldSpec* time, std::vector<double>& raw_times,
+                           CloudConversion& out) {
   const std::uint64_t width = msg.width(), height = msg.height();
   const std::uint64_t point_step = msg.point_step(), row_step = msg.row_step();
   const bool swap = msg.is_bigendian() != host_is_big_endian();
@@ -404,11 +408,16 @@ void read_any_layout(const sensor_msgs::msg::PointCloud2& msg,
       points.push_back(v);
       if (with_intensity) {
         const float i = read_as_float(p + specs[3].offset, specs[3].datatype, swap);
-        intensities.push_back(std::isfinite(i) ? i : 0.0f);
+        if (!std::isfinite(i))
+          return fail(
+              out, CloudError::kNonFiniteIntensity,
+              "point " + std::to_string(row * width + col) + " has intensity " + std::to_string(i));
+        intensities.push_back(i);
       }
       if (time) raw_times.push_back(read_as_double(p + time->offset, time->datatype, swap));
     }
   }
+  return CloudError::kNone;
 }
 
 }  // namespace
@@ -445,7 +454,9 @@ CloudError from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
     return CloudError::kNone;
   }
   std::vector<double> raw_times;
-  read_any_layout(msg, specs, with_intensity, time.found ? &time : nullptr, raw_times, out);
+  if (read_any_layout(msg, specs, with_intensity, time.found ? &time : nullptr, raw_times, out) !=
+      CloudError::kNone)
+    return out.error;
   if (time.found) return convert_times(msg, time, raw_times, out);
   return CloudError::kNone;
 }

@@ -102,13 +102,19 @@ KittiBinLayout detect_layout(const std::string& path, const std::string& bytes) 
 void apply_vertical_angle_correction(PointCloud& cloud, double angle_deg) {
   if (angle_deg == 0.0) return;
   const double angle = angle_deg * (3.14159265358979323846 / 180.0);
-  for (Eigen::Vector3f& point : cloud.points) {
+  constexpr double kFloatMax = std::numeric_limits<float>::max();
+  for (std::size_t i = 0; i < cloud.points.size(); ++i) {
+    Eigen::Vector3f& point = cloud.points[i];
     const Eigen::Vector3d pt = point.cast<double>();
     // Exactly KISS-ICP's CorrectKITTIScan with a configurable angle.
     const Eigen::Vector3d rotation_vector = pt.cross(Eigen::Vector3d(0., 0., 1.));
     const double axis_norm = rotation_vector.norm();
     if (!(axis_norm > 0.0)) continue;  // on the z axis: no defined tilt direction
-    point = (Eigen::AngleAxisd(angle, rotation_vector / axis_norm) * pt).cast<float>();
+    const Eigen::Vector3d corrected = Eigen::AngleAxisd(angle, rotation_vector / axis_norm) * pt;
+    if (!(corrected.cwiseAbs().maxCoeff() <= kFloatMax))
+      throw std::range_error("point " + std::to_string(i) +
+                             " leaves the float range when corrected");
+    point = corrected.cast<float>();
   }
 }
 
@@ -133,9 +139,18 @@ PointCloud read_kitti_bin(const std::string& path, const KittiBinOptions& option
     const Eigen::Vector3f p(float_at(bytes, b), float_at(bytes, b + 1), float_at(bytes, b + 2));
     if (!p.allFinite()) continue;
     cloud.points.push_back(p);
-    if (stride == 4) cloud.intensities.push_back(float_at(bytes, b + 3));
+    if (stride != 4) continue;
+    const float intensity = float_at(bytes, b + 3);
+    if (!std::isfinite(intensity))
+      throw IoError(path, "point " + std::to_string(i) + ": intensity " +
+                              std::to_string(intensity) + " is not finite");
+    cloud.intensities.push_back(intensity);
   }
-  apply_vertical_angle_correction(cloud, options.vertical_angle_correction_deg);
+  try {
+    apply_vertical_angle_correction(cloud, options.vertical_angle_correction_deg);
+  } catch (const std::range_error& e) {
+    throw IoError(path, std::string("vertical angle correction: ") + e.what());
+  }
   return cloud;
 }
 

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "litamin2/core/value_checks.hpp"
 #include "litamin2/io/file_util.hpp"
 #include "litamin2/io/io_error.hpp"
 
@@ -43,11 +44,10 @@ Eigen::Isometry3d from_row_major(const std::string& path, const std::string& wha
     for (int c = 0; c < 3; ++c) tr.linear()(r, c) = rotation9[static_cast<std::size_t>(r * 3 + c)];
     tr.translation()(r) = translation3[static_cast<std::size_t>(r)];
   }
-  const double err = (tr.linear().transpose() * tr.linear() - Eigen::Matrix3d::Identity()).norm();
-  if (!(err < 1e-3)) {
-    throw IoError(path, what + ": rotation part is not orthonormal (|R^T R - I| = " +
-                            std::to_string(err) + ")");
-  }
+  if (const auto why = checks::rotation_error(tr.linear()))
+    throw IoError(path, what + ": rotation part " + *why);
+  if (const auto why = checks::position_error(tr.translation()))
+    throw IoError(path, what + ": translation " + *why);
   return tr;
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string_view>
@@ -230,15 +231,23 @@ double decode(const Field& f, const char* p) {
   }
 }
 
-void append_point(PointCloud& cloud, const Eigen::Vector3d& p, const Field* intensity_field,
-                  double intensity, const Field* time_field, double time,
-                  std::vector<double>& times) {
+/// Appends point `index` of the file: dropped when a coordinate is NaN/Inf (PCL's "no return"
+/// points of organised clouds); a coordinate beyond float range or an intensity that is not a
+/// finite float rejects the file (IoError): nothing is repaired.
+void append_point(const std::string& path, std::size_t index, PointCloud& cloud,
+                  const Eigen::Vector3d& p, const Field* intensity_field, double intensity,
+                  const Field* time_field, double time, std::vector<double>& times) {
   if (!p.allFinite()) return;
-  const Eigen::Vector3f pf = p.cast<float>();
-  if (!pf.allFinite()) return;  // finite double beyond float range
-  cloud.points.push_back(pf);
-  if (intensity_field) cloud.intensities.push_back(static_cast<float>(intensity));
-  if (time_field) times.push_back(time);
+  constexpr double kFloatMax = std::numeric_limits<float>::max();
+  if (p.cwiseAbs().maxCoeff() > kFloatMax)
+    throw IoError(path, "point " + std::to_string(index) + ": a coordinate is beyond float range");
+  cloud.points.push_back(p.cast<float>());
+  if (time_field) times.push_back(time);  // checked with the others (relative_times)
+  if (!intensity_field) return;
+  if (!(std::fabs(intensity) <= kFloatMax))
+    throw IoError(path, "point " + std::to_string(index) + ": intensity " +
+                            std::to_string(intensity) + " is not a finite float");
+  cloud.intensities.push_back(static_cast<float>(intensity));
 }
 
 /// Per-point time fields as LiDAR drivers write them, in the order one is chosen when a file has
@@ -326,7 +335,7 @@ PointCloud read_pcd(const std::string& path) {
       const char* rec = bytes.data() + header.data_offset + i * header.record_size;
       const Eigen::Vector3d p(decode(*fx, rec + fx->offset), decode(*fy, rec + fy->offset),
                               decode(*fz, rec + fz->offset));
-      append_point(cloud, p, fi, fi ? decode(*fi, rec + fi->offset) : 0.0, ft,
+      append_point(path, i, cloud, p, fi, fi ? decode(*fi, rec + fi->offset) : 0.0, ft,
                    ft ? decode(*ft, rec + ft->offset) : 0.0, raw_times);
     }
     return finish();
@@ -359,8 +368,8 @@ PointCloud read_pcd(const std::string& path) {
       }
       return *v;
     };
-    append_point(cloud, Eigen::Vector3d(value(fx), value(fy), value(fz)), fi, fi ? value(fi) : 0.0,
-                 ft, ft ? value(ft) : 0.0, raw_times);
+    append_point(path, read, cloud, Eigen::Vector3d(value(fx), value(fy), value(fz)), fi,
+                 fi ? value(fi) : 0.0, ft, ft ? value(ft) : 0.0, raw_times);
     ++read;
   }
   if (read != n) {

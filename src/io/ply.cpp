@@ -1,8 +1,10 @@
 #include "litamin2/io/ply.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -188,6 +190,11 @@ PlyVertices read_ply_vertices(const std::string& path) {
   }
   if (!ended) throw IoError(path, "no end_header line: not a PLY file or truncated header");
   if (!format) throw IoError(path, "header has no format line");
+  for (const Element& element : elements) {
+    // Items without a property occupy no byte: a count of 2^60 would be read for ever.
+    if (element.count > 0 && element.properties.empty())
+      throw IoError(path, "element '" + element.name + "' has items but no property");
+  }
 
   PlyVertices result;
   const bool swap = *format == Format::kBinaryBE;
@@ -280,14 +287,23 @@ PointCloud read_ply_points(const std::string& path) {
   const int ix = v.index_of("x"), iy = v.index_of("y"), iz = v.index_of("z");
   if (ix < 0 || iy < 0 || iz < 0) throw IoError(path, "vertex element lacks x, y or z");
   const int ii = v.index_of("intensity");
+  // As read_pcd: a vertex with a NaN/Inf coordinate is dropped (no return); a coordinate
+  // beyond float range or an intensity that is not a finite float rejects the file.
+  constexpr double kFloatMax = std::numeric_limits<float>::max();
   PointCloud cloud;
   cloud.points.reserve(v.size());
   for (std::size_t i = 0; i < v.size(); ++i) {
-    const Eigen::Vector3f p(static_cast<float>(v.at(i, ix)), static_cast<float>(v.at(i, iy)),
-                            static_cast<float>(v.at(i, iz)));
+    const Eigen::Vector3d p(v.at(i, ix), v.at(i, iy), v.at(i, iz));
     if (!p.allFinite()) continue;
-    cloud.points.push_back(p);
-    if (ii >= 0) cloud.intensities.push_back(static_cast<float>(v.at(i, ii)));
+    if (p.cwiseAbs().maxCoeff() > kFloatMax)
+      throw IoError(path, "vertex " + std::to_string(i) + ": a coordinate is beyond float range");
+    cloud.points.push_back(p.cast<float>());
+    if (ii < 0) continue;
+    const double intensity = v.at(i, ii);
+    if (!(std::fabs(intensity) <= kFloatMax))
+      throw IoError(path, "vertex " + std::to_string(i) + ": intensity " +
+                              std::to_string(intensity) + " is not a finite float");
+    cloud.intensities.push_back(static_cast<float>(intensity));
   }
   return cloud;
 }

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <string_view>
 
+#include "litamin2/core/value_checks.hpp"
 #include "litamin2/io/file_util.hpp"
 #include "litamin2/io/io_error.hpp"
 
@@ -67,6 +68,10 @@ std::vector<Eigen::Isometry3d> read_kitti_poses(const std::string& path) {
     if (!pose.matrix().allFinite()) {
       throw IoError(path, line_prefix(line_no) + "pose contains NaN or Inf");
     }
+    if (const auto why = checks::rotation_error(pose.linear()))
+      throw IoError(path, line_prefix(line_no) + "rotation " + *why);
+    if (const auto why = checks::position_error(pose.translation()))
+      throw IoError(path, line_prefix(line_no) + "translation " + *why);
     poses.push_back(pose);
   }
   if (poses.empty()) throw IoError(path, "empty file: no poses");
@@ -102,13 +107,13 @@ std::vector<TimedPose> read_tum(const std::string& path) {
                               " values, expected 8 (t x y z qx qy qz qw)");
     }
     const std::vector<double> v = parse_numbers(path, line_no, tokens);
+    if (!std::isfinite(v[0])) throw IoError(path, line_prefix(line_no) + "non-finite time");
+    if (const auto why = checks::position_error(Eigen::Vector3d(v[1], v[2], v[3])))
+      throw IoError(path, line_prefix(line_no) + "translation " + *why);
+    if (const auto why = checks::unit_quaternion_error(v[7], v[4], v[5], v[6]))
+      throw IoError(path, line_prefix(line_no) + "quaternion " + *why);
     Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
-    const double norm = q.norm();
-    if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]) ||
-        !std::isfinite(v[3]) || !std::isfinite(norm) || norm < 1e-12) {
-      throw IoError(path, line_prefix(line_no) + "non-finite value or zero quaternion");
-    }
-    q.coeffs() /= norm;
+    q.normalize();  // removes the rounding of the file's digits only
     TimedPose tp;
     tp.time = v[0];
     tp.pose.linear() = q.toRotationMatrix();

@@ -1,5 +1,7 @@
 #include "litamin2/store/record_codec.hpp"
 
+#include "litamin2/core/value_checks.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -64,11 +66,51 @@ unsigned char* bytes(std::string& s) {
   return reinterpret_cast<unsigned char*>(s.data());
 }
 
+void check_pose(const char* what, const Eigen::Matrix<double, 3, 4>& m) {
+  if (const auto why = checks::rotation_error(m.leftCols<3>()))
+    throw std::invalid_argument(std::string(what) + ": rotation " + *why);
+  if (const auto why = checks::position_error(m.col(3)))
+    throw std::invalid_argument(std::string(what) + ": translation " + *why);
+}
+
+void check_matrix6(const char* what, const Matrix6d& m) {
+  if (const auto why = checks::covariance_error<6>(m))
+    throw std::invalid_argument(std::string(what) + " " + *why);
+}
+
+/// The distribution checks of the codec, on the values as stored (float mean, covariance triangle
+/// and count).
+void check_distribution(std::size_t index, const Eigen::Vector3d& mean, const Eigen::Matrix3d& cov,
+                        std::int64_t count) {
+  if (count < 0)  // (the message the store's callers have always seen)
+    throw std::invalid_argument("a distribution has a negative point count " +
+                                std::to_string(count) + " (distribution " + std::to_string(index) +
+                                ")");
+  const std::string what = "distribution " + std::to_string(index) + ": ";
+  if (const auto why = checks::position_error(mean))
+    throw std::invalid_argument(what + "mean " + *why);
+  if (const auto why = checks::covariance_error<3>(cov))
+    throw std::invalid_argument(what + "covariance " + *why);
+  if (count < 1 || count > std::numeric_limits<int>::max())
+    throw std::invalid_argument(what + "point count " + std::to_string(count) +
+                                " is not in 1 .. 2^31 - 1");
+}
+
+/// The covariance of the stored upper triangle (xx, xy, xz, yy, yz, zz).
+Eigen::Matrix3d from_triangle(const float* t) {
+  Eigen::Matrix3d c;
+  c << t[0], t[1], t[2],  //
+      t[1], t[3], t[4],   //
+      t[2], t[4], t[5];
+  return c;
+}
+
 }  // namespace
 
 std::string encode_pose(const Eigen::Isometry3d& pose) {
   std::string out(kPoseBytes, '\0');
   const Eigen::Matrix<double, 3, 4> m = pose.matrix().topRows<3>();
+  check_pose("pose", m);
   for (int i = 0; i < 12; ++i) put_f64(bytes(out) + 8 * i, m.data()[i]);
   return out;
 }
@@ -78,13 +120,14 @@ Eigen::Isometry3d decode_pose(const void* data, std::size_t size) {
   const auto* p = static_cast<const unsigned char*>(data);
   Eigen::Matrix<double, 3, 4> m;
   for (int i = 0; i < 12; ++i) m.data()[i] = get_f64(p + 8 * i);
-  if (!m.allFinite()) throw std::invalid_argument("pose blob holds a non-finite value");
+  check_pose("pose blob", m);
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.matrix().topRows<3>() = m;
   return pose;
 }
 
 std::string encode_matrix6(const Matrix6d& m) {
+  check_matrix6("6x6 matrix", m);
   std::string out(kMatrix6Bytes, '\0');
   for (int i = 0; i < 36; ++i) put_f64(bytes(out) + 8 * i, m.data()[i]);
   return out;
@@ -95,20 +138,25 @@ Matrix6d decode_matrix6(const void* data, std::size_t size) {
   const auto* p = static_cast<const unsigned char*>(data);
   Matrix6d m;
   for (int i = 0; i < 36; ++i) m.data()[i] = get_f64(p + 8 * i);
+  check_matrix6("6x6 matrix blob", m);
   return m;
 }
 
 std::string encode_distributions(const std::vector<Distribution>& distributions) {
   std::string out(distributions.size() * kDistributionBytes, '\0');
   unsigned char* p = bytes(out);
-  for (const Distribution& d : distributions) {
-    if (d.count < 0) {
-      throw std::invalid_argument("a distribution has a negative point count " +
-                                  std::to_string(d.count));
-    }
+  for (std::size_t k = 0; k < distributions.size(); ++k) {
+    const Distribution& d = distributions[k];
     const Eigen::Matrix3d& c = d.cov;
     const double values[9] = {d.mean.x(), d.mean.y(), d.mean.z(), c(0, 0), c(0, 1),
                               c(0, 2),    c(1, 1),    c(1, 2),    c(2, 2)};
+    // Checked as given (bounded, so that the conversion to float is defined) and as they will be
+    // read back, in float.
+    check_distribution(k, d.mean, c, d.count);
+    float stored[9];
+    for (int i = 0; i < 9; ++i) stored[i] = static_cast<float>(values[i]);
+    check_distribution(k, Eigen::Vector3f(stored[0], stored[1], stored[2]).cast<double>(),
+                       from_triangle(stored + 3), d.count);
     for (int i = 0; i < 9; ++i) put_f32(p + 4 * i, values[i]);
     put_u32(p + 36, static_cast<std::uint32_t>(d.count));
     p += kDistributionBytes;
@@ -124,22 +172,14 @@ std::vector<Distribution> decode_distributions(const void* data, std::size_t siz
   }
   const auto* p = static_cast<const unsigned char*>(data);
   std::vector<Distribution> out(size / kDistributionBytes);
-  for (Distribution& d : out) {
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    Distribution& d = out[k];
     float v[9];
     for (int i = 0; i < 9; ++i) v[i] = get_f32(p + 4 * i);
-    for (float x : v) {
-      if (!std::isfinite(x)) throw std::invalid_argument("a distribution holds a non-finite value");
-    }
     const std::uint32_t count = get_u32(p + 36);
-    if (count > static_cast<std::uint32_t>(std::numeric_limits<int>::max())) {
-      throw std::invalid_argument("a distribution has a point count " + std::to_string(count) +
-                                  " out of range");
-    }
     d.mean = Eigen::Vector3d(v[0], v[1], v[2]);
-    Eigen::Matrix3d raw;
-    raw << v[3], v[4], v[5],  //
-        v[4], v[6], v[7],     //
-        v[5], v[7], v[8];
+    const Eigen::Matrix3d raw = from_triangle(v + 3);
+    check_distribution(k, d.mean, raw, count);
     regularize_for_terms(regularizer, raw, d.cov, d.shape_cov, d.shape_cov_inv);
     d.count = static_cast<int>(count);
     p += kDistributionBytes;

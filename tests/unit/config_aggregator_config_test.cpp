@@ -79,6 +79,21 @@ TEST(AggregatorConfig, ErrorsNameTheKey) {
   expect_error("colour: red", "colour: unknown key");
 }
 
+TEST(AggregatorConfig, LimitsAndSecurity) {
+  EXPECT_EQ(aggregator_config_from_yaml(YAML::Node()).limits.max_distributions_per_patch, 200'000);
+  EXPECT_EQ(aggregator_config_from_yaml(YAML::Load("limits: {max_distributions_per_patch: 7}"))
+                .limits.max_distributions_per_patch,
+            7);
+  expect_error("limits: {max_distributions_per_patch: 0}", "limits.max_distributions_per_patch");
+  expect_error("security: {enabled: true}", "security.identity_ca: required");
+}
+
+TEST(AggregatorConfig, AMappingAsAKeyAndInfinityAreConfigErrors) {
+  // Regression (issue 14): litamin2-aggregator --check-config died with SIGABRT on this.
+  expect_error("? {voxel_size: 3}\n", "config: a key must be a name");
+  expect_error("mapper: {map_voxel_size: .inf}", "mapper.map_voxel_size: '.inf' is not a finite");
+}
+
 TEST(AggregatorConfig, FileErrorsNameTheFile) {
   try {
     load_aggregator_config("/nonexistent/agg.yaml");

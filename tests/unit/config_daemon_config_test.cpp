@@ -178,6 +178,35 @@ TEST(DaemonConfig, StreamErrors) {
             "streams[0].extrinsic.quat: unknown key");
 }
 
+TEST(DaemonConfig, AMappingAsAKeyIsAConfigErrorEverywhere) {
+  // Regression (issue 14): litamin2d --check-config died with SIGABRT on these.
+  EXPECT_EQ(error_of("? {voxel_size: 3}\n"), "config: a key must be a name, got '{voxel_size: 3}'");
+  EXPECT_EQ(error_of("discovery: {enabled: true}\ntracker:\n  voxelizer:\n    ? voxel_size: 3\n"
+                     "    : 2\n"),
+            "tracker.voxelizer: a key must be a name, got '{voxel_size: 3}'");
+  // A stream's tracker overrides are merged key by key before they are read.
+  EXPECT_EQ(error_of("streams: [{id: a, tracker: {? [x]: 1}}]"),
+            "streams[0].tracker: a key must be a name, got '[x]'");
+}
+
+TEST(DaemonConfig, LimitsAndSecurity) {
+  const DaemonConfig defaults = parse("discovery: {enabled: true}");
+  EXPECT_EQ(defaults.limits.max_points_per_scan, 5'000'000);
+  EXPECT_FALSE(defaults.security.enabled);
+  EXPECT_EQ(parse("discovery: {enabled: true}\nlimits: {max_points_per_scan: 1000}")
+                .limits.max_points_per_scan,
+            1000);
+  EXPECT_EQ(error_of("discovery: {enabled: true}\nlimits: {max_points_per_scan: 0}"),
+            "limits.max_points_per_scan: 0 is out of range [1, 100000000]");
+  EXPECT_EQ(error_of("discovery: {enabled: true}\nsecurity: {enabled: true}"),
+            "security.identity_ca: required when security.enabled is true");
+  EXPECT_EQ(
+      error_of("discovery: {enabled: true}\nsecurity: {enabled: true, identity_ca: /no/ca.pem}"),
+      "security.identity_ca: cannot open '/no/ca.pem'");
+  EXPECT_EQ(error_of("discovery: {enabled: true}\nsecurity: {certificat: x}"),
+            "security.certificat: unknown key");
+}
+
 TEST(DaemonConfig, FileErrorsStartWithTheFileName) {
   const std::string path = ::testing::TempDir() + "/daemon_config_test_bad.yaml";
   std::ofstream(path) << "discovery: {enabled: true}\nqueue_depth: -3\n";

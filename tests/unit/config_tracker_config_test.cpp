@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
+#include <cstdio>
 
 namespace litamin2 {
 namespace {
@@ -70,6 +71,41 @@ TEST(TrackerConfigYaml, ErrorsNameKeyAndValue) {
             std::string::npos);
   EXPECT_NE(error_of("registration: {max_iterations: 0}").find("registration.max_iterations: 0"),
             std::string::npos);
+}
+
+TEST(TrackerConfigYaml, InfinityAndNanAreRejectedForEveryNumber) {
+  // Regression (issue 14): +Inf passed validation for 13 keys (sigma_icp, lambda, map.radius,
+  // keyframe.distance, voxelizer.max_range, ...) that have only a lower bound.
+  const char* keys[] = {"voxelizer: {max_range: %s}",
+                        "voxelizer: {min_range: %s}",
+                        "voxelizer: {regularization: {min_eigenvalue: %s}}",
+                        "map: {radius: %s}",
+                        "registration: {sigma_icp: %s}",
+                        "registration: {sigma_cov: %s}",
+                        "registration: {lambda: %s}",
+                        "registration: {rotation_tolerance: %s}",
+                        "registration: {translation_tolerance: %s}",
+                        "registration: {regrid_translation: %s}",
+                        "registration: {regrid_rotation_deg: %s}",
+                        "registration: {max_correspondence_distance: %s}",
+                        "keyframe: {distance: %s}",
+                        "keyframe: {angle_deg: %s}"};
+  for (const char* key : keys) {
+    for (const char* value : {".inf", "+.inf", "-.inf", ".nan"}) {
+      char yaml[128];
+      std::snprintf(yaml, sizeof(yaml), key, value);
+      const std::string error = error_of(yaml);
+      EXPECT_NE(error.find("is not a finite number"), std::string::npos) << yaml << ": " << error;
+    }
+  }
+}
+
+TEST(TrackerConfigYaml, AMappingAsAKeyIsAConfigError) {
+  // Regression (issue 14): `? voxel_size: 3` (a mapping used as a key) threw
+  // YAML::TypedBadConversion out of reject_unknown, and the mains aborted (rc 134).
+  EXPECT_EQ(error_of("voxelizer:\n  ? voxel_size: 3\n  : 2\n"),
+            "voxelizer: a key must be a name, got '{voxel_size: 3}'");
+  EXPECT_EQ(error_of("? [a, b]\n: 1\n"), "config: a key must be a name, got '[a, b]'");
 }
 
 TEST(TrackerConfigYaml, FileErrorsNameTheFile) {

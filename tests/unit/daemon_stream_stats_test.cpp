@@ -32,14 +32,16 @@ TEST(StreamStats, CountsAndLatency) {
     stats.record_result(arrival, arrival + (i + 1) * 1ms, i % 10 == 0, i != 0, 1000 + i);
   }
   stats.record_dropped(3);
-  stats.record_bad_message();
-  stats.record_bad_message();
+  stats.record_bad_message("bad_row_step");
+  stats.record_bad_message("malformed_cdr");
   stats.record_failed();
   const StatsSnapshot s = stats.snapshot(t0 + 99 * 100ms + 100ms);
   EXPECT_EQ(s.frames_received, 100u);
   EXPECT_EQ(s.frames_processed, 100u);
   EXPECT_EQ(s.frames_dropped, 3u);
   EXPECT_EQ(s.bad_messages, 2u);
+  EXPECT_EQ(s.bad_message_reasons.at("bad_row_step"), 1u);
+  EXPECT_EQ(s.bad_message_reasons.at("malformed_cdr"), 1u);
   EXPECT_EQ(s.frames_failed, 1u);
   EXPECT_EQ(s.frames_unregistered, 1u);
   EXPECT_EQ(s.keyframes, 10u);

@@ -33,9 +33,15 @@ TEST(DdsOdometry, PoseRoundTrip) {
   const Eigen::Isometry3d back = from_pose_msg(to_pose_msg(pose));
   EXPECT_TRUE(back.isApprox(pose, 1e-12));
   EXPECT_GE(to_pose_msg(pose).orientation().w(), 0.0);
-  geometry_msgs::msg::Pose zero;  // all zero: identity rotation, not NaN
+  EXPECT_FALSE(pose_msg_error(to_pose_msg(pose)));
+  // A zero or unnormalised quaternion is not a pose: rejected, not replaced or normalised.
+  geometry_msgs::msg::Pose zero;
   zero.orientation().w(0.0);
-  EXPECT_TRUE(from_pose_msg(zero).linear().isApprox(Eigen::Matrix3d::Identity()));
+  ASSERT_TRUE(pose_msg_error(zero));
+  EXPECT_NE(pose_msg_error(zero)->find("not a unit quaternion (norm 0)"), std::string::npos);
+  geometry_msgs::msg::Pose twice = to_pose_msg(pose);
+  twice.orientation().w(2.0 * twice.orientation().w());
+  EXPECT_TRUE(pose_msg_error(twice));
 }
 
 TEST(DdsOdometry, AtOriginTheCovarianceBlocksAreSwapped) {
@@ -139,10 +145,20 @@ TEST(DdsOdometry, RejectsBadMessages) {
   m.pose().pose().orientation().z(0.0);
   m.pose().pose().orientation().w(0.0);
   EXPECT_EQ(from_odometry(m).error, OdometryError::kBadPose);
-  EXPECT_NE(from_odometry(m).message.find("zero quaternion"), std::string::npos);
+  EXPECT_NE(from_odometry(m).message.find("not a unit quaternion"), std::string::npos);
   m = good;
   m.pose().covariance()[7] = std::numeric_limits<double>::infinity();
-  EXPECT_EQ(from_odometry(m).error, OdometryError::kNonFiniteCovariance);
+  EXPECT_EQ(from_odometry(m).error, OdometryError::kBadCovariance);
+  m = good;
+  m.pose().covariance()[0] = -1.0;  // a negative variance
+  EXPECT_EQ(from_odometry(m).error, OdometryError::kBadCovariance);
+  EXPECT_NE(from_odometry(m).message.find("positive semi-definite"), std::string::npos);
+  m = good;
+  m.pose().pose().position().x(1e200);
+  EXPECT_EQ(from_odometry(m).error, OdometryError::kBadPose);
+  m = good;
+  m.twist().twist().linear().x(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(from_odometry(m).error, OdometryError::kBadTwist);
   m = good;
   m.header().stamp().nanosec(1'000'000'000u);
   EXPECT_EQ(from_odometry(m).error, OdometryError::kBadStamp);

@@ -165,7 +165,7 @@ TEST(DdsPointCloud2, NonFinitePointsAreDroppedAndCounted) {
   cloud.points[1].x() = nan;
   cloud.points[4].y() = inf;
   cloud.points[7].z() = -inf;
-  cloud.intensities[2] = nan;  // finite point, NaN intensity: kept, intensity 0
+  cloud.intensities[1] = nan;  // a "no return" point: NaN intensity too, dropped with it
   const auto result = from_pointcloud2(to_pointcloud2(cloud, Stamp::from_seconds(0.0), "f"));
   ASSERT_TRUE(result.ok());
   EXPECT_EQ(result.non_finite, 3u);
@@ -173,8 +173,27 @@ TEST(DdsPointCloud2, NonFinitePointsAreDroppedAndCounted) {
   ASSERT_EQ(result.cloud.size(), 7u);
   EXPECT_EQ(result.cloud.points[0], cloud.points[0]);
   EXPECT_EQ(result.cloud.points[1], cloud.points[2]);
-  EXPECT_EQ(result.cloud.intensities[1], 0.0f);
+  EXPECT_EQ(result.cloud.intensities[1], cloud.intensities[2]);
   EXPECT_EQ(result.cloud.points[6], cloud.points[9]);
+}
+
+TEST(DdsPointCloud2, NonFiniteIntensityOfAFinitePointRejectsTheMessage) {
+  // Regression (issue 14): it used to become 0. Invalid data is rejected, not repaired.
+  for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
+                    -std::numeric_limits<float>::infinity()}) {
+    PointCloud cloud = random_cloud(10, true);
+    cloud.intensities[2] = bad;
+    const auto msg = to_pointcloud2(cloud, Stamp::from_seconds(0.0), "f");
+    const auto result = from_pointcloud2(msg);
+    EXPECT_EQ(result.error, CloudError::kNonFiniteIntensity);
+    EXPECT_NE(result.message.find("point 2"), std::string::npos) << result.message;
+    EXPECT_TRUE(result.cloud.points.empty());
+    EXPECT_STREQ(to_string(result.error), "non_finite_intensity");
+    // The daemon does not read intensities: the same message is a valid scan there.
+    CloudConversionOptions xyz_only;
+    xyz_only.read_intensity = false;
+    EXPECT_TRUE(from_pointcloud2(msg, xyz_only).ok());
+  }
 }
 
 TEST(DdsPointCloud2, WithoutIntensityGivesTheSamePointsOnEveryLayout) {

@@ -132,6 +132,28 @@ TEST(IoKittiBin, DropsNonFinitePoints) {
   EXPECT_EQ(cloud.intensities[1], 0.7f);
 }
 
+TEST(IoKittiBin, NonFiniteIntensityOfAFinitePointIsAnError) {
+  // Regression (issue 14): it was passed on as NaN/Inf.
+  const fs::path file = temp_dir() / "nan_i.bin";
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  write_floats(file, {1, 2, 3, 0.5f, 4, 5, 6, nan, 7, 8, 9, 0.7f, 1, 1, 1, 1});
+  KittiBinOptions xyzi;
+  xyzi.layout = KittiBinLayout::kXYZI;
+  expect_io_error([&] { read_kitti_bin(file.string(), xyzi); }, "nan_i.bin", "point 1: intensity");
+}
+
+TEST(IoKittiBin, VerticalCorrectionBeyondFloatRangeIsAnError) {
+  // Regression (issue 14): a point a hair below the float maximum became Inf.
+  const fs::path file = temp_dir() / "edge.bin";
+  const float big = std::numeric_limits<float>::max();
+  write_floats(file, {1, 2, 3, 0.5f, big, 0, big, 0.2f, 7, 8, 9, 0.7f, 1, 1, 1, 1});
+  KittiBinOptions options;
+  options.layout = KittiBinLayout::kXYZI;
+  options.vertical_angle_correction_deg = 0.205;
+  expect_io_error([&] { read_kitti_bin(file.string(), options); }, "edge.bin",
+                  "leaves the float range");
+}
+
 TEST(IoKittiBin, RealSharedScansAreDetectedAsXyz) {
   const std::string dir = kShared + "/kitti/seq00_frames_xyz";
   if (!fs::exists(dir + "/000000.bin") || !fs::exists(dir + "/000001.bin")) {

@@ -151,6 +151,8 @@ TEST(IoKittiCalib, ErrorsNameTheFile) {
   check("eleven.txt", "Tr: 1 0 0 0 0 1 0 0 0 0 1\n", "11 values");
   check("notnum.txt", "Tr: 1 0 0 0 0 1 0 0 0 0 1 abc\n", "abc");
   check("skew.txt", "Tr: 1 0 0 0 0 2 0 0 0 0 1 0\n", "orthonormal");
+  // Regression (issue 14): a reflection is orthonormal but not a rotation.
+  check("reflection.txt", "Tr: 1 0 0 0 0 1 0 0 0 0 -1 0\n", "reflection");
   check("nokey.txt", "P0: 1 2 3\n", "no 'Tr:'");
   check("nocolon.txt", "hello world\n", "line 1");
   check("empty_calib.txt", "", "empty_calib.txt");

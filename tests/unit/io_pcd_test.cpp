@@ -137,6 +137,15 @@ TEST(IoPcd, ErrorsNameTheFile) {
   check("size_mismatch.pcd", "FIELDS x y z\nSIZE 4 4\nTYPE F F F\nWIDTH 1\nDATA ascii\n1 2 3\n",
         "SIZE");
   check("empty.pcd", "", "DATA");
+  // Regressions (issue 14): a finite point's intensity must be a finite float, and coordinates
+  // must fit in a float (they were dropped silently).
+  const std::string with_i =
+      "FIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nWIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA "
+      "ascii\n";
+  check("nan_intensity.pcd", with_i + "1 2 3 4\n1 2 3 nan\n", "point 1: intensity");
+  check("inf_intensity.pcd", with_i + "1 2 3 inf\n1 2 3 4\n", "point 0: intensity");
+  check("huge.pcd", kHeader3 + "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n1e300 2 3\n",
+        "beyond float range");
   check("garbage.pcd", std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16), "garbage.pcd");
   expect_io_error([&] { read_pcd((dir / "missing.pcd").string()); }, "missing.pcd");
   expect_io_error([&] { write_pcd_binary((dir / "nodir" / "out.pcd").string(), sample(false)); },

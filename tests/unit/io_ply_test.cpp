@@ -132,3 +132,29 @@ TEST(IoPly, ErrorsNameTheFile) {
   expect_io_error([&] { write_ply_points((dir / "nodir" / "out.ply").string(), sample(false)); },
                   "out.ply");
 }
+
+// Findings of the ply fuzz harness (tests/fuzz/corpus/ply/regression-*): rejected, not repaired.
+TEST(IoPly, InvalidValuesAreRejectedNotRepaired) {
+  const fs::path dir = temp_dir();
+  const std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nproperty float intensity\nend_header\n";
+  // A NaN point is a "no return" and dropped; the others are read.
+  write_text(dir / "nan_point.ply", header + "1 2 3 4\nnan 0 0 1\n5 6 7 8\n");
+  const PointCloud cloud = read_ply_points((dir / "nan_point.ply").string());
+  ASSERT_EQ(cloud.size(), 2u);
+  EXPECT_EQ(cloud.intensities[1], 8.0f);
+  write_text(dir / "nan_intensity.ply", header + "1 2 3 4\n5 6 7 nan\n8 8 8 8\n");
+  expect_io_error([&] { read_ply_points((dir / "nan_intensity.ply").string()); },
+                  "nan_intensity.ply", "intensity");
+  write_text(dir / "far.ply", header + "1 2 3 4\n5e300 6 7 8\n8 8 8 8\n");
+  expect_io_error([&] { read_ply_points((dir / "far.ply").string()); }, "far.ply",
+                  "beyond float range");
+  // 2^60 items without a property would be iterated for ever.
+  write_text(dir / "empty_element.ply",
+             "ply\nformat binary_little_endian 1.0\nelement nothing 1152921504606846976\n"
+             "element vertex 0\nproperty float x\nproperty float y\nproperty float z\n"
+             "end_header\n");
+  expect_io_error([&] { read_ply_points((dir / "empty_element.ply").string()); },
+                  "empty_element.ply", "no property");
+}

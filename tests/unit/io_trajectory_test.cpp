@@ -79,6 +79,25 @@ TEST(IoTrajectory, KittiErrorsNameFileAndLine) {
   expect_io_error([&] { write_kitti_poses((dir / "nodir" / "out.txt").string(), {}); }, "out.txt");
 }
 
+TEST(IoTrajectory, KittiRejectsNonRotations) {
+  // Regressions (issue 14): a pose file's matrix is taken as is, so it must be a rigid motion.
+  const fs::path dir = temp_dir();
+  write_text(dir / "scaled.txt", "1 0 0 0 0 1 0 0 0 0 1 0\n2 0 0 0 0 2 0 0 0 0 2 0\n");
+  expect_io_error([&] { read_kitti_poses((dir / "scaled.txt").string()); }, "line 2",
+                  "not orthonormal");
+  write_text(dir / "reflection.txt", "1 0 0 0 0 1 0 0 0 0 -1 0\n");
+  expect_io_error([&] { read_kitti_poses((dir / "reflection.txt").string()); }, "line 1",
+                  "reflection");
+  write_text(dir / "far.txt", "1 0 0 1e300 0 1 0 0 0 0 1 0\n");
+  expect_io_error([&] { read_kitti_poses((dir / "far.txt").string()); }, "line 1",
+                  "translation holds");
+  // Rounding to 7 digits (KITTI's ground truth) is accepted.
+  write_text(dir / "rounded.txt",
+             "0.9999978 5.272628e-04 -2.066935e-03 1 -5.296506e-04 "
+             "0.9999992 -1.154865e-03 2 2.066324e-03 1.155958e-03 0.9999971 3\n");
+  EXPECT_EQ(read_kitti_poses((dir / "rounded.txt").string()).size(), 1u);
+}
+
 TEST(IoTrajectory, SharedKittiGroundTruth00) {
   const std::string file = kShared + "/kitti/poses/00.txt";
   if (!fs::exists(file)) GTEST_SKIP() << "shared KITTI poses not found: " << file;
@@ -109,14 +128,14 @@ TEST(IoTrajectory, TumRoundTripIsExact) {
   }
 }
 
-TEST(IoTrajectory, TumSkipsCommentsAndNormalisesQuaternion) {
+TEST(IoTrajectory, TumSkipsCommentsAndRemovesTheRoundingOfQuaternions) {
   const fs::path file = temp_dir() / "c.tum";
   write_text(file,
              "# timestamp tx ty tz qx qy qz qw\r\n"
-             "0.5 1 2 3 0 0 0 2\r\n"
+             "0.5 1 2 3 0 0 0 1.0000001\r\n"
              "\n"
              "  # another comment\n"
-             "1.5 4 5 6 0 0 1 1\n");
+             "1.5 4 5 6 0 0 0.7071068 0.7071068\n");
   const auto poses = read_tum(file.string());
   ASSERT_EQ(poses.size(), 2u);
   EXPECT_EQ(poses[0].time, 0.5);
@@ -132,6 +151,12 @@ TEST(IoTrajectory, TumErrorsNameFileAndLine) {
   expect_io_error([&] { read_tum((dir / "seven.tum").string()); }, "seven.tum", "line 3");
   write_text(dir / "zeroq.tum", "0 1 2 3 0 0 0 0\n");
   expect_io_error([&] { read_tum((dir / "zeroq.tum").string()); }, "zeroq.tum", "line 1");
+  // Regressions (issue 14): an unnormalised quaternion is rejected, not normalised.
+  write_text(dir / "twice.tum", "0 1 2 3 0 0 0 1\n1 1 2 3 0 0 0 2\n");
+  expect_io_error([&] { read_tum((dir / "twice.tum").string()); }, "line 2",
+                  "not a unit quaternion (norm 2)");
+  write_text(dir / "far.tum", "0 1e300 2 3 0 0 0 1\n");
+  expect_io_error([&] { read_tum((dir / "far.tum").string()); }, "line 1", "translation holds");
   write_text(dir / "only_comments.tum", "# nothing\n");
   expect_io_error([&] { read_tum((dir / "only_comments.tum").string()); }, "only_comments.tum");
   expect_io_error([&] { read_tum((dir / "missing.tum").string()); }, "missing.tum");

@@ -9,6 +9,7 @@
 #include "litamin2/config/aggregator_config_yaml.hpp"
 #include "litamin2/config/config_reload.hpp"
 #include "litamin2/core/config_error.hpp"
+#include "litamin2/dds/security_files.hpp"
 #include "litamin2/io/io_error.hpp"
 #include "litamin2/mapping/mapper_config.hpp"
 #include "litamin2/service/logging.hpp"
@@ -119,6 +120,13 @@ int main(int argc, char** argv) {
                  e.what());
     return 2;
   }
+  // The security files' contents (certificates, signatures, expiry, grants), here too so that
+  // --check-config reports them.
+  if (const auto why = litamin2::dds::security_files_error(config.security, config.dds.domain)) {
+    std::fprintf(stderr, "<3>error: invalid configuration: %s: %s\n", config_file.c_str(),
+                 why->c_str());
+    return 2;
+  }
   service::setup_logging(config.log_level);
   if (check_config) {
     std::cout << config_file << ": ok (" << describe(config) << ")\n";
@@ -163,6 +171,8 @@ int main(int argc, char** argv) {
     spdlog::error("{}", e.what());
     exit_code = 1;
   }
+  // Fast DDS's log thread must not deliver to spdlog once static destruction begins.
+  litamin2::dds::stop_fastdds_log();
   spdlog::default_logger()->flush();
   return exit_code;
 }

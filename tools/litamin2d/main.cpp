@@ -7,6 +7,7 @@
 #include "litamin2/config/daemon_config_yaml.hpp"
 #include "litamin2/core/config_error.hpp"
 #include "litamin2/daemon/dds/daemon_node.hpp"
+#include "litamin2/dds/security_files.hpp"
 #include "litamin2/service/logging.hpp"
 #include "litamin2/service/service_loop.hpp"
 #include "litamin2/version.hpp"
@@ -67,6 +68,13 @@ int main(int argc, char** argv) {
                  e.what());
     return 2;
   }
+  // The security files' contents (certificates, signatures, expiry, grants), here too so that
+  // --check-config reports them.
+  if (const auto why = litamin2::dds::security_files_error(config.security, config.dds.domain)) {
+    std::fprintf(stderr, "<3>error: invalid configuration: %s: %s\n", config_file.c_str(),
+                 why->c_str());
+    return 2;
+  }
   service::setup_logging(config.log_level);
   if (check_config) {
     std::cout << config_file << ": ok (" << describe(config) << ")\n";
@@ -106,7 +114,7 @@ int main(int argc, char** argv) {
       // A frame is wedged: do not hang on it, systemd would have to kill us.
       spdlog::error("{} frame(s) still in processing at the deadline; exiting without them",
                     drained.in_flight);
-      spdlog::default_logger()->flush();
+      litamin2::dds::stop_fastdds_log();
       std::_Exit(1);
     }
   } catch (const ConfigError& e) {
@@ -116,6 +124,8 @@ int main(int argc, char** argv) {
     spdlog::error("{}", e.what());
     exit_code = 1;
   }
+  // Fast DDS's log thread must not deliver to spdlog once static destruction begins.
+  litamin2::dds::stop_fastdds_log();
   spdlog::default_logger()->flush();
   return exit_code;
 }

@@ -59,6 +59,10 @@ int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& sh
                  "Transport: loopback (default: 127.0.0.1 and shared memory only), shm, default, "
                  "or FILE.xml[:PROFILE] (Fast DDS XML, participant profile name default "
                  "'litamin2')");
+  std::string pki, identity;
+  app.add_option("--pki", pki,
+                 "DDS-Security: a folder made by scripts/litamin2-pki (with --identity)");
+  app.add_option("--identity", identity, "DDS-Security: the identity in --pki to publish as");
   app.add_option("--frames", frames, "Frames A:B of every sequence (B exclusive), A: or :B");
   app.add_option("--wait-subscribers", options.wait_subscribers,
                  "Matched readers each stream waits for before publishing (default 1, 0 = none)")
@@ -110,6 +114,8 @@ int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& sh
   options.participant = *participant;
   options.participant.domain_id = domain;
   options.participant.name = "litamin2-replay";
+  if (pki.empty() != identity.empty()) return fail("--pki and --identity go together");
+  if (!pki.empty()) options.participant.security = service::pki_identity(pki, identity);
   const auto range = tools::parse_frame_range(frames, &error);
   if (!range) return fail(error);
   options.first_frame = range->first;

@@ -4,6 +4,7 @@
 /// validation (read from YAML by config/aggregator_config_yaml.hpp).
 
 #include "litamin2/mapping/mapper_config.hpp"
+#include "litamin2/service/security_config.hpp"
 #include "litamin2/service/transport_config.hpp"
 #include "litamin2/service/watchdog_config.hpp"
 
@@ -55,8 +56,18 @@ struct PublishConfig {
   double status_period_s = 1.0;
 };
 
+/// Bounds on what a client may send (docs/security.md, "Validation").
+struct LimitsConfig {
+  /// A map patch with more distributions is rejected (too_many_distributions) before any is
+  /// converted; its serialised payload may be at most 40 bytes a distribution plus 1 MiB.
+  int max_distributions_per_patch = 200'000;
+};
+
 struct AggregatorConfig {
   service::TransportConfig dds;
+  /// DDS-Security (off by default).
+  service::SecurityConfig security;
+  LimitsConfig limits;
   TopicsConfig topics;
   StoreConfig store;
   IngestConfig ingest;

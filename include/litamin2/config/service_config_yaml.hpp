@@ -1,8 +1,9 @@
 #pragma once
-/// The sections both processes' configs share: `dds:` (TransportConfig), `watchdog:`
-/// (WatchdogConfig) and `log_level`.
+/// The sections both processes' configs share: `dds:` (TransportConfig), `security:`
+/// (SecurityConfig), `watchdog:` (WatchdogConfig) and `log_level`.
 
 #include "litamin2/config/yaml_section.hpp"
+#include "litamin2/service/security_config.hpp"
 #include "litamin2/service/transport_config.hpp"
 #include "litamin2/service/watchdog_config.hpp"
 
@@ -15,6 +16,10 @@ namespace litamin2::service {
 /// Reads a `dds:` section (a null node gives the defaults); errors name keys as dds.<key>. An
 /// xml profile needs a readable xml_file and an xml_profile; other profiles take neither.
 TransportConfig transport_config_from_yaml(const YAML::Node& node);
+
+/// Reads a `security:` section (a null node: security off); errors name keys as security.<key>.
+/// When enabled, each of the six files must be given and readable (security_config_error).
+SecurityConfig security_config_from_yaml(const YAML::Node& node);
 
 /// Reads a `watchdog:` section; stall_timeout_s must lie in [0.1, max_stall_timeout_s].
 WatchdogConfig watchdog_config_from_yaml(const YAML::Node& node, double max_stall_timeout_s);

@@ -6,6 +6,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <set>
 #include <sstream>
 #include <string>
@@ -15,19 +16,69 @@
 
 namespace litamin2::config {
 
-/// The YAML text of a node, for error messages.
+namespace detail {
+
+/// Appends the flow-style text of `node` to `out` until it holds more than `budget` characters
+/// (aliases can make a small document an exponentially large tree: never walk all of it).
+inline void append_yaml_text(const YAML::Node& node, std::string& out, std::size_t budget) {
+  if (out.size() > budget) return;
+  switch (node.Type()) {
+    case YAML::NodeType::Scalar:
+      out += node.Scalar();
+      return;
+    case YAML::NodeType::Sequence: {
+      out += '[';
+      bool first = true;
+      for (const auto& item : node) {
+        if (out.size() > budget) break;
+        out += first ? "" : ", ";
+        first = false;
+        append_yaml_text(item, out, budget);
+      }
+      out += ']';
+      return;
+    }
+    case YAML::NodeType::Map: {
+      out += '{';
+      bool first = true;
+      for (const auto& entry : node) {
+        if (out.size() > budget) break;
+        out += first ? "" : ", ";
+        first = false;
+        append_yaml_text(entry.first, out, budget);
+        out += ": ";
+        append_yaml_text(entry.second, out, budget);
+      }
+      out += '}';
+      return;
+    }
+    default:
+      return;
+  }
+}
+
+}  // namespace detail
+
+/// The YAML text of a node (flow style, at most 80 characters), for error messages.
 inline std::string yaml_text(const YAML::Node& node) {
   if (!node) return "";
-  std::ostringstream out;
-  out << node;
-  std::string s = out.str();
+  std::string s;
+  detail::append_yaml_text(node, s, 80);
   for (char& c : s)
     if (c == '\n') c = ' ';
   return s.size() > 80 ? s.substr(0, 77) + "..." : s;
 }
 
+/// The name of a mapping key; a key that is not a plain name (a sequence or a mapping used as a
+/// key, `? {voxel_size: 3}`) is a ConfigError naming the mapping `path`.
+inline std::string key_name(const YAML::Node& key, const std::string& path) {
+  if (key.IsScalar()) return key.Scalar();
+  throw ConfigError(path + ": a key must be a name, got '" + yaml_text(key) + "'");
+}
+
 /// Reads the keys of one YAML mapping, rejecting unknown keys; `path` is the dotted key path
-/// used in messages.
+/// used in messages. Every yaml-cpp exception becomes a ConfigError naming the key; numbers
+/// must be finite (.inf and .nan are rejected wherever a number is read).
 class YamlSection {
  public:
   YamlSection(const YAML::Node& node, std::string path) : node_(node), path_(std::move(path)) {
@@ -47,6 +98,10 @@ class YamlSection {
     } catch (const YAML::Exception&) {
       throw ConfigError(name(key) + ": cannot read '" + yaml_text(value) + "' as " +
                         type_name<T>());
+    }
+    if constexpr (std::is_floating_point_v<T>) {
+      if (!std::isfinite(field))
+        throw ConfigError(name(key) + ": '" + yaml_text(value) + "' is not a finite number");
     }
     return true;
   }
@@ -88,7 +143,7 @@ class YamlSection {
   void reject_unknown() const {
     if (!node_ || !node_.IsMap()) return;
     for (const auto& entry : node_) {
-      const std::string key = entry.first.as<std::string>();
+      const std::string key = key_name(entry.first, name());
       if (!known_.count(key)) throw ConfigError(name(key) + ": unknown key");
     }
   }
@@ -102,7 +157,7 @@ class YamlSection {
   template <class T>
   static const char* type_name() {
     if constexpr (std::is_same_v<T, int>) return "an integer";
-    if constexpr (std::is_same_v<T, double>) return "a number";
+    if constexpr (std::is_floating_point_v<T>) return "a number";
     if constexpr (std::is_same_v<T, bool>) return "true/false";
     return "a string";
   }

@@ -4,6 +4,7 @@
 /// YAML by config/daemon_config_yaml.hpp).
 
 #include "litamin2/core/tracker_config.hpp"
+#include "litamin2/service/security_config.hpp"
 #include "litamin2/service/transport_config.hpp"
 #include "litamin2/service/watchdog_config.hpp"
 
@@ -50,8 +51,18 @@ struct OutputsConfig {
   std::string odom_frame = "odom";
 };
 
+/// Bounds on what a client may send (docs/security.md, "Validation").
+struct LimitsConfig {
+  /// A PointCloud2 with more points (width * height) is rejected (too_many_points) before any
+  /// point is read.
+  int max_points_per_scan = 5'000'000;
+};
+
 struct DaemonConfig {
   service::TransportConfig dds;
+  /// DDS-Security (off by default).
+  service::SecurityConfig security;
+  LimitsConfig limits;
   /// Statically configured streams.
   std::vector<StreamConfig> streams;
   DiscoveryConfig discovery;

@@ -6,7 +6,9 @@
 #include <chrono>
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <mutex>
+#include <string>
 #include <vector>
 
 namespace litamin2::daemon {
@@ -21,6 +23,8 @@ struct StatsSnapshot {
   std::uint64_t frames_dropped = 0;
   /// Messages rejected by validation, and scans with no finite point (empty, or all NaN/Inf).
   std::uint64_t bad_messages = 0;
+  /// bad_messages by reason (the conversion's error code, "malformed_cdr", "empty").
+  std::map<std::string, std::uint64_t> bad_message_reasons;
   /// Valid scans dropped because their header stamp was not later than the last accepted
   /// scan's of the stream (a stamp going backwards, or a duplicate): never processed.
   std::uint64_t frames_out_of_order = 0;
@@ -53,7 +57,10 @@ class StreamStats {
                        std::size_t max_samples = 4096);
 
   void record_received();
-  void record_bad_message();
+  /// A rejected message; `reason` is its short code (dds::to_string of the error).
+  void record_bad_message(const std::string& reason);
+  /// `count` rejected messages of one reason (nothing for 0).
+  void record_bad_messages(const std::string& reason, std::uint64_t count);
   void record_out_of_order();
   void record_non_finite_points(std::uint64_t points);
   void record_dropped(std::uint64_t frames = 1);

@@ -9,7 +9,7 @@
 namespace litamin2::dds {
 
 /// One key/value pair of a DiagnosticStatus.
-diagnostic_msgs::msg::KeyValue key_value(const char* key, const std::string& value);
+diagnostic_msgs::msg::KeyValue key_value(const std::string& key, const std::string& value);
 /// `value` with `decimals` digits after the point (printf's %.*f).
 std::string fixed_number(double value, int decimals);
 

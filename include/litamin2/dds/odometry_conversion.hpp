@@ -28,6 +28,8 @@ namespace litamin2::dds {
 /// `left_covariance` in the tracker's (phi, tau) left-update coordinates (see above).
 std::array<double, 36> ros_pose_covariance(const Matrix6d& left_covariance,
                                            const Eigen::Isometry3d& pose);
+/// The 6x6 matrix of a row-major ROS covariance array.
+Matrix6d ros_covariance_matrix(const std::array<double, 36>& ros_covariance);
 /// Inverse of ros_pose_covariance.
 Matrix6d left_covariance_from_ros(const std::array<double, 36>& ros_covariance,
                                   const Eigen::Isometry3d& pose);
@@ -54,12 +56,16 @@ struct OdometrySample {
 /// Why an Odometry message was rejected.
 enum class OdometryError {
   kNone = 0,
-  /// The pose has a NaN or +-Inf, or its quaternion is zero.
+  /// The pose is not a pose (pose_msg_error: non-finite or out-of-bounds position, quaternion
+  /// not of norm 1).
   kBadPose,
-  /// The pose covariance has a NaN or +-Inf.
-  kNonFiniteCovariance,
+  /// The pose covariance is not finite, bounded, symmetric and positive semi-definite
+  /// (checks::covariance_error).
+  kBadCovariance,
   /// header.stamp.nanosec >= 1e9.
   kBadStamp,
+  /// The twist or its covariance has a NaN or +-Inf (ROS's -1 for "unknown" is accepted).
+  kBadTwist,
 };
 
 /// Short name of an error ("bad_pose", ...), for counters and logs.
@@ -75,7 +81,8 @@ struct OdometryConversion {
   bool ok() const { return error == OdometryError::kNone; }
 };
 
-/// Reads and checks an Odometry message. Never throws for bad input.
+/// Reads and checks an Odometry message (docs/security.md, "Validation"). Never throws for bad
+/// input.
 OdometryConversion from_odometry(const nav_msgs::msg::Odometry& msg);
 
 }  // namespace litamin2::dds

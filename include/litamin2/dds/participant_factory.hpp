@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 
+#include "litamin2/service/security_config.hpp"
 #include "litamin2/service/transport_config.hpp"
 
 #include <fastdds/dds/core/status/StatusMask.hpp>
@@ -36,6 +37,8 @@ struct ParticipantConfig {
   std::uint32_t socket_buffer_bytes = 4u << 20;
   /// kLoopback: the host whose unicast locators are used for discovery and data.
   std::string loopback_address = "127.0.0.1";
+  /// DDS-Security (any transport profile; with kXml added to the profile's QoS).
+  service::SecurityConfig security;
 
   /// Participant profile name used in the shipped XML files (config/dds/*.xml).
   static constexpr std::string_view kDefaultXmlProfile = "litamin2";
@@ -48,8 +51,8 @@ struct ParticipantConfig {
 std::optional<ParticipantConfig> parse_participant_profile(std::string_view text,
                                                            std::string* error = nullptr);
 
-/// The participant QoS of a config (not for kXml, whose QoS comes from the file: for kXml this
-/// returns the factory's default QoS with the name set).
+/// The participant QoS of a config, with its security properties (not for kXml, whose QoS
+/// comes from the file: for kXml this returns the factory's default QoS with the name set).
 eprosima::fastdds::dds::DomainParticipantQos participant_qos(const ParticipantConfig& config);
 
 /// Deletes a participant's contained entities, then the participant.
@@ -61,7 +64,8 @@ using ParticipantPtr =
 
 /// Creates a participant (installing the spdlog log forwarding first, see
 /// forward_fastdds_log_to_spdlog). Returns nullptr and sets *error (if given) when the XML file
-/// cannot be loaded, the profile does not exist or Fast DDS refuses the QoS.
+/// cannot be loaded, the profile does not exist, the security files do not pass
+/// security_files_error or Fast DDS refuses the QoS.
 ParticipantPtr create_participant(
     const ParticipantConfig& config, std::string* error = nullptr,
     eprosima::fastdds::dds::DomainParticipantListener* listener = nullptr,
@@ -69,8 +73,15 @@ ParticipantPtr create_participant(
 
 /// Replaces Fast DDS's console log consumers by one forwarding every entry to spdlog's default
 /// logger (Error -> error, Warning -> warn, Info -> debug; logger name "fastdds" in the
-/// message), and sets Fast DDS's verbosity to Warning. At exit, Fast DDS's log is flushed and
-/// its thread stopped before spdlog is destroyed. Idempotent and thread-safe.
+/// message), and sets Fast DDS's verbosity to Warning. Registers stop_fastdds_log with
+/// std::atexit, so that it runs before spdlog's registry is destroyed in every process and test
+/// that forwards. Idempotent and thread-safe; does nothing after stop_fastdds_log.
 void forward_fastdds_log_to_spdlog();
+
+/// Delivers the queued Fast DDS log entries to spdlog, then detaches spdlog (later entries go to
+/// stderr) and stops Fast DDS's log thread: Fast DDS's log thread must never deliver to spdlog
+/// once static destruction has begun. Mains call it before returning; it also runs at exit.
+/// Idempotent and thread-safe.
+void stop_fastdds_log();
 
 }  // namespace litamin2::dds

@@ -1,6 +1,6 @@
 #pragma once
-/// DDS setup shared by the daemon's and the aggregator's nodes: the participant of a `dds:`
-/// config section and type registration.
+/// DDS setup shared by the daemon's and the aggregator's nodes: the participant of the `dds:`
+/// and `security:` config sections and type registration.
 
 #include "litamin2/dds/participant_factory.hpp"
 #include "litamin2/service/transport_config.hpp"
@@ -13,8 +13,9 @@
 
 namespace litamin2::dds {
 
-/// The participant of a `dds:` section, named `name` in discovery tools.
+/// The participant of a `dds:` and a `security:` section, named `name` in discovery tools.
 ParticipantConfig participant_config(const service::TransportConfig& config,
+                                     const service::SecurityConfig& security,
                                      const std::string& name);
 
 /// Registers `type` (owned by the result) with `participant`; throws std::runtime_error naming

@@ -39,6 +39,8 @@ enum class CloudError {
   /// finite, or the times are neither relative (within 1 s of 0) nor, for a FLOAT64 field,
   /// absolute (within 1 s of header.stamp, in seconds or nanoseconds).
   kBadTimeField,
+  /// A point with finite coordinates has a NaN or +-Inf intensity (when intensities are read).
+  kNonFiniteIntensity,
 };
 
 /// Short name of an error ("missing_field", ...), for counters and logs.
@@ -47,7 +49,7 @@ const char* to_string(CloudError error);
 /// Options of from_pointcloud2.
 struct CloudConversionOptions {
   /// Clouds with more points (width * height, before dropping non-finite points) are rejected
-  /// with kTooManyPoints; 0 means no limit.
+  /// with kTooManyPoints; 0 means no limit. The daemon's limits.max_points_per_scan.
   std::size_t max_points = 5'000'000;
   /// Read the "intensity" field when present (any numeric datatype, converted to float).
   bool read_intensity = true;
@@ -69,8 +71,8 @@ struct CloudConversion {
   /// Human-readable reason when error != kNone ("row_step 100 < width 10 * point_step 16").
   std::string message;
   /// The finite points of the message, in data order (rows then columns); intensities when
-  /// the message has an intensity field and read_intensity is set (non-finite intensities
-  /// become 0); times when it has a time field and read_time is set. Empty when rejected.
+  /// the message has an intensity field and read_intensity is set; times when it has a time
+  /// field and read_time is set. Empty when rejected.
   PointCloud cloud;
   /// With read_time: the time field read ("" if none), and whether its values were absolute.
   std::string time_field;
@@ -93,8 +95,10 @@ struct CloudConversion {
 ///  - width * height == 0 is a valid empty cloud;
 ///  - is_bigendian: values are byte-swapped when the message's byte order differs from the
 ///    host's (not rejected);
-///  - points with a NaN/Inf coordinate are dropped and counted in `non_finite`; is_dense is
-///    ignored.
+///  - points with a NaN/Inf coordinate are dropped and counted in `non_finite` (the "no
+///    return" points of organised clouds); is_dense is ignored;
+///  - a point with finite coordinates and a NaN/Inf intensity rejects the message
+///    (kNonFiniteIntensity): it is not repaired to 0.
 /// Never throws for bad input (only std::bad_alloc can escape), never reads out of bounds.
 CloudConversion from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
                                  const CloudConversionOptions& options = {});

@@ -33,7 +33,9 @@ struct KittiBinOptions {
 
 /// Reads a KITTI .bin scan. Points with a non-finite (NaN/Inf) coordinate are dropped, together
 /// with their intensity, so the result only holds finite points. With layout XYZ (given or
-/// detected) the cloud has no intensities.
+/// detected) the cloud has no intensities. A point with finite coordinates and a NaN/Inf
+/// intensity, or one the vertical angle correction pushes to Inf, is an IoError (rejected, not
+/// repaired).
 ///
 /// Auto detection when the size is a multiple of 48 bytes (both layouts possible): a record
 /// read as XYZI is "bad" if a coordinate is not finite or its intensity is not in [0, 256); a
@@ -45,6 +47,8 @@ struct KittiBinOptions {
 PointCloud read_kitti_bin(const std::string& path, const KittiBinOptions& options = {});
 
 /// Applies the vertical angle correction of KittiBinOptions (in degrees) to every point, in place.
+/// Throws std::range_error naming the point if a corrected point leaves the float range (its
+/// coordinates were within a hair of it).
 void apply_vertical_angle_correction(PointCloud& cloud, double angle_deg);
 
 /// Writes a KITTI .bin scan as x,y,z,intensity float32 records; intensity is 0 when the cloud

@@ -20,7 +20,9 @@ namespace litamin2::io {
 ///    `sequence` (e.g. 0 for "00") is required and selects the row whose range contains it.
 /// The 12 numbers are the row-major 3x4 matrix [R|t]. Throws IoError naming the file if it is
 /// missing/unreadable, has no usable entry, lacks a row for the sequence, needs a sequence that
-/// was not given, has a malformed entry or a rotation part that is not orthonormal (1e-3).
+/// was not given, has a malformed entry, a rotation part that is not orthonormal
+/// (checks::kOrthonormalTolerance) or is a reflection (determinant -1), or a translation beyond
+/// checks::kMaxPosition.
 Eigen::Isometry3d read_kitti_velo_to_cam(const std::string& path,
                                          std::optional<int> sequence = std::nullopt);
 

@@ -19,8 +19,9 @@ namespace litamin2::io {
 /// times in F 4 or a span over 1 s throw IoError. WIDTH*HEIGHT must equal POINTS (POINTS
 /// defaults to WIDTH*HEIGHT, HEIGHT to 1). Points with a non-finite coordinate (PCL's NaN points
 /// of organised clouds) are dropped together with their intensity and time. Throws IoError naming
-/// the file for a missing/unreadable file, a malformed header, inconsistent counts or truncated
-/// data.
+/// the file for a missing/unreadable file, a malformed header, inconsistent counts, truncated
+/// data, a coordinate beyond float range, or a point with finite coordinates whose intensity is
+/// NaN, Inf or beyond float range (rejected, not repaired).
 PointCloud read_pcd(const std::string& path);
 
 /// Writes a binary .pcd (v0.7, unorganised: WIDTH = size, HEIGHT = 1) with float32 fields

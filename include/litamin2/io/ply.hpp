@@ -47,13 +47,14 @@ struct PlyVertices {
 /// Reads the "vertex" element of a PLY file (format ascii, binary_little_endian or
 /// binary_big_endian; any scalar property type). Other elements, including ones with list
 /// properties (faces), are skipped; list properties inside the vertex element throw IoError.
-/// Throws IoError naming the file if it is missing, not a PLY, has no vertex element or is
-/// truncated.
+/// Throws IoError naming the file if it is missing, not a PLY, has no vertex element, has an
+/// element with items but no property, or is truncated.
 PlyVertices read_ply_vertices(const std::string& path);
 
 /// Reads a PLY point cloud: vertex properties x, y, z (required) and intensity (optional).
 /// Vertices with a non-finite coordinate are dropped. Throws IoError as read_ply_vertices does,
-/// and if x, y or z is missing.
+/// if x, y or z is missing, and if a coordinate is beyond float range or an intensity is not a
+/// finite float (nothing is repaired).
 PointCloud read_ply_points(const std::string& path);
 
 }  // namespace litamin2::io

@@ -10,8 +10,14 @@
 ///   Only the ICP-term covariance is stored; the Cov term's shape_cov and shape_cov_inv are
 ///   recomputed on decoding with the caller's regulariser, as the tracker computes them.
 ///
-/// Decoders throw std::invalid_argument with the reason when the bytes cannot be a value of
-/// the type (wrong size, non-finite pose, count out of range); the store adds which row it was.
+/// Encoders and decoders check the values as the network conversions do (core/value_checks.hpp,
+/// docs/security.md "Validation"): a pose's rotation is orthonormal with determinant +1 and its
+/// translation finite and within checks::kMaxPosition; a 6x6 matrix (covariance, information)
+/// and a distribution's covariance are finite, bounded, symmetric and positive semi-definite; a
+/// distribution's mean is a bounded position and its count is 1 .. 2^31 - 1. A value that fails
+/// is rejected with std::invalid_argument naming the reason, never repaired: what is written can
+/// always be read back, and a corrupt or tampered row never comes back into the mapper. Decoders
+/// also reject a wrong size; the store adds which row it was.
 
 #include "litamin2/core/covariance_regularizer.hpp"
 #include "litamin2/core/distribution.hpp"
@@ -28,13 +34,15 @@ constexpr std::size_t kPoseBytes = 12 * sizeof(double);
 constexpr std::size_t kMatrix6Bytes = 36 * sizeof(double);
 constexpr std::size_t kDistributionBytes = 10 * 4;
 
+/// Throws std::invalid_argument if the pose is not a valid rigid transform (see above).
 std::string encode_pose(const Eigen::Isometry3d& pose);
 Eigen::Isometry3d decode_pose(const void* data, std::size_t size);
 
+/// Throws std::invalid_argument if the matrix is not a valid covariance (see above).
 std::string encode_matrix6(const Matrix6d& m);
 Matrix6d decode_matrix6(const void* data, std::size_t size);
 
-/// Throws std::invalid_argument if a count is negative.
+/// Throws std::invalid_argument if a distribution is not valid (see above), naming its index.
 std::string encode_distributions(const std::vector<Distribution>& distributions);
 std::vector<Distribution> decode_distributions(const void* data, std::size_t size,
                                                const RegularizerConfig& regularizer);

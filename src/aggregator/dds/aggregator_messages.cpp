@@ -67,6 +67,9 @@ diagnostic_msgs::msg::DiagnosticArray make_aggregator_status(
   v.push_back(key_value("writers", std::to_string(in.writers)));
   v.push_back(key_value("patches_received", std::to_string(in.received)));
   v.push_back(key_value("patches_rejected", std::to_string(in.rejected)));
+  for (const auto& [reason, count] : in.rejected_by_reason)
+    v.push_back(key_value("patches_rejected." + reason, std::to_string(count)));
+  v.push_back(key_value("malformed_samples", std::to_string(in.malformed_samples)));
   v.push_back(key_value("samples_lost", std::to_string(in.samples_lost)));
   v.push_back(key_value("queued", std::to_string(in.queued)));
   v.push_back(key_value("queue_capacity", std::to_string(in.queue_capacity)));

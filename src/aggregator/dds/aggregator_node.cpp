@@ -2,6 +2,7 @@
 
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "litamin2/aggregator/dds/aggregator_messages.hpp"
+#include "litamin2/dds/checked_type.hpp"
 #include "litamin2/dds/participant_setup.hpp"
 #include "litamin2/dds/qos.hpp"
 #include "litamin2/dds/time_conversion.hpp"
@@ -18,6 +19,7 @@
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace litamin2::aggregator {
@@ -41,6 +43,19 @@ fdds::DataWriterQos latest_per_instance_qos() {
   qos.endpoint().history_memory_policy =
       eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
   return qos;
+}
+
+dds::PatchConversionOptions patch_options(const AggregatorConfig& config) {
+  dds::PatchConversionOptions options;
+  options.max_distributions = static_cast<std::size_t>(config.limits.max_distributions_per_patch);
+  return options;
+}
+
+/// The largest serialised map patch accepted: 40 bytes a distribution plus 1 MiB for the rest
+/// (strings, pose, covariance).
+std::uint32_t patch_payload_limit(int max_distributions) {
+  const std::uint64_t bytes = 40ull * static_cast<std::uint64_t>(max_distributions) + (1u << 20);
+  return static_cast<std::uint32_t>(std::min<std::uint64_t>(bytes, 0xffffffffu));
 }
 
 }  // namespace
@@ -68,7 +83,7 @@ class AggregatorNode::Sink : public AggregatorSink {
 AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Progress& progress)
     : config_(std::move(config)),
       queue_(static_cast<std::size_t>(config_.ingest.queue_capacity)),
-      listener_(queue_) {
+      listener_(queue_, patch_options(config_)) {
   store::StoreOptions options;
   options.synchronous_full = config_.store.synchronous_full;
   core_ = std::make_unique<AggregatorCore>(config_.store.path, store::OpenMode::kCreateIfMissing,
@@ -78,16 +93,21 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
                core_->mapper().loops().size());
 
   std::string error;
-  participant_ =
-      dds::create_participant(dds::participant_config(config_.dds, "litamin2-aggregator"), &error);
+  participant_ = dds::create_participant(
+      dds::participant_config(config_.dds, config_.security, "litamin2-aggregator"), &error);
   if (!participant_) throw std::runtime_error("cannot create the DDS participant: " + error);
-  patch_type_ = dds::register_type(participant_.get(), new litamin2::msg::MapPatchPubSubType());
+  // Received patches and odometry are deserialised by CheckedTypes: malformed CDR is counted,
+  // not fatal, and a patch's payload is bounded by limits.max_distributions_per_patch.
+  checked_patch_type_ = new dds::CheckedType<litamin2::msg::MapPatchPubSubType>(
+      patch_payload_limit(config_.limits.max_distributions_per_patch));
+  patch_type_ = dds::register_type(participant_.get(), checked_patch_type_);
   poses_type_ =
       dds::register_type(participant_.get(), new litamin2::msg::KeyframePosesPubSubType());
   summary_type_ = dds::register_type(participant_.get(), new litamin2::msg::MapSummaryPubSubType());
   status_type_ =
       dds::register_type(participant_.get(), new diagnostic_msgs::msg::DiagnosticArrayPubSubType());
-  odometry_type_ = dds::register_type(participant_.get(), new nav_msgs::msg::OdometryPubSubType());
+  checked_odometry_type_ = new dds::CheckedType<nav_msgs::msg::OdometryPubSubType>();
+  odometry_type_ = dds::register_type(participant_.get(), checked_odometry_type_);
 
   subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
   publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
@@ -203,6 +223,8 @@ void AggregatorNode::publish_status(Clock::time_point now) {
   IngestCounters in;
   in.received = listener_.received();
   in.rejected = listener_.rejected();
+  in.rejected_by_reason = listener_.rejected_by_reason();
+  in.malformed_samples = checked_patch_type_->failures() + checked_odometry_type_->failures();
   in.samples_lost = listener_.samples_lost();
   in.writers = listener_.writers();
   in.queued = queue_.size();

@@ -1,7 +1,7 @@
 #include "litamin2/aggregator/dds/patch_listener.hpp"
 
 #include "litamin2/core/stopwatch.hpp"
-#include "litamin2/dds/map_patch_conversion.hpp"
+#include "litamin2/dds/checked_type.hpp"
 #include "litamin2/msg/MapPatch.h"
 
 #include <spdlog/spdlog.h>
@@ -24,29 +24,42 @@ void PatchListener::on_data_available(fdds::DataReader* reader) {
   litamin2::msg::MapPatch msg;
   fdds::SampleInfo info;
   double t = thread_cpu_seconds();
+  // The reader's type is a dds::CheckedType: Fast DDS drops (inside take_next_sample) a sample
+  // it could not deserialise; count those.
+  dds::take_sample_failures();
   for (;;) {
     const bool taken = reader->take_next_sample(&msg, &info) == ReturnCode_t::RETCODE_OK;
+    const dds::SampleFailures failed = dds::take_sample_failures();
     const double taken_at = thread_cpu_seconds();
     take_cpu_ns_ += ns(taken_at - t);
+    if (failed.count() > 0) {
+      received_ += failed.count();
+      reject(dds::to_string(dds::SampleError::kMalformed), failed.malformed, failed.last_message);
+      reject(dds::to_string(dds::SampleError::kTooLarge), failed.too_large, failed.last_message);
+    }
     if (!taken) break;
     t = taken_at;
     if (!info.valid_data) continue;
     ++received_;
-    dds::PatchConversion patch = dds::from_map_patch(msg);
+    dds::PatchConversion patch = dds::from_map_patch(msg, options_);
     const double converted_at = thread_cpu_seconds();
     convert_cpu_ns_ += ns(converted_at - t);
     t = converted_at;
     if (!patch.ok()) {
-      ++rejected_;
-      if (const auto suppressed = bad_patch_log_.allow())
-        spdlog::warn("dropped a bad map patch ({}): {}{}", dds::to_string(patch.error),
-                     patch.message,
-                     *suppressed ? fmt::format(" (and {} more since the last report)", *suppressed)
-                                 : std::string());
+      reject(dds::to_string(patch.error), 1, patch.message);
       continue;
     }
     if (!queue_.push(std::move(patch.keyframe))) return;  // shutting down
   }
+}
+
+void PatchListener::reject(const char* reason, std::uint64_t count, const std::string& message) {
+  if (count == 0) return;
+  rejected_.add(reason, count);
+  if (const auto suppressed = bad_patch_log_.allow())
+    spdlog::warn("dropped a bad map patch ({}): {}{}", reason, message,
+                 *suppressed ? fmt::format(" (and {} more since the last report)", *suppressed)
+                             : std::string());
 }
 
 void PatchListener::on_subscription_matched(fdds::DataReader*,

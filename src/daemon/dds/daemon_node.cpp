@@ -5,6 +5,7 @@
 #include "litamin2/daemon/dds/points_listener.hpp"
 #include "litamin2/daemon/dds/status_message.hpp"
 #include "litamin2/daemon/stream_processor.hpp"
+#include "litamin2/dds/checked_type.hpp"
 #include "litamin2/dds/participant_setup.hpp"
 #include "litamin2/dds/qos.hpp"
 #include "litamin2/dds/time_conversion.hpp"
@@ -57,12 +58,14 @@ DaemonNode::DaemonNode(DaemonConfig config) : config_(std::move(config)) {
   sensor_msgs::msg::PointCloud2PubSubType points_type_probe;
   discovery_ = std::make_unique<PublisherDiscovery>(points_type_probe.getName());
   std::string error;
-  participant_ = dds::create_participant(dds::participant_config(config_.dds, "litamin2d"), &error,
-                                         discovery_.get(), fdds::StatusMask::none());
+  participant_ =
+      dds::create_participant(dds::participant_config(config_.dds, config_.security, "litamin2d"),
+                              &error, discovery_.get(), fdds::StatusMask::none());
   if (!participant_) throw std::runtime_error("cannot create the DDS participant: " + error);
 
-  points_type_ =
-      dds::register_type(participant_.get(), new sensor_msgs::msg::PointCloud2PubSubType());
+  // Received scans are deserialised by a CheckedType: malformed CDR is counted, not fatal.
+  points_type_ = dds::register_type(
+      participant_.get(), new dds::CheckedType<sensor_msgs::msg::PointCloud2PubSubType>());
   odom_type_ = dds::register_type(participant_.get(), new nav_msgs::msg::OdometryPubSubType());
   map_patch_type_ = dds::register_type(participant_.get(), new litamin2::msg::MapPatchPubSubType());
   status_type_ =
@@ -123,6 +126,7 @@ DaemonNode::Stream& DaemonNode::add_stream(StreamConfig config) {
   dds::CloudConversionOptions conversion;
   conversion.read_intensity = false;
   conversion.read_time = s.config.tracker.deskew.enabled;
+  conversion.max_points = static_cast<std::size_t>(config_.limits.max_points_per_scan);
   s.listener =
       std::make_unique<PointsListener>(s.config.id, *scheduler_, s.handle, s.stats, conversion);
   spdlog::info("stream {}: {} -> {}", s.config.id, s.config.topic, odom_topic_name);

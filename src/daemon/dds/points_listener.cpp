@@ -1,5 +1,6 @@
 #include "litamin2/daemon/dds/points_listener.hpp"
 
+#include "litamin2/dds/checked_type.hpp"
 #include "litamin2/dds/time_conversion.hpp"
 #include "sensor_msgs/msg/PointCloud2.h"
 
@@ -30,17 +31,30 @@ void PointsListener::on_data_available(fdds::DataReader* reader) {
                    *suppressed ? fmt::format(" and {} more since the last report", *suppressed)
                                : std::string());
   };
-  while (reader->take_next_sample(&msg, &info) == ReturnCode_t::RETCODE_OK) {
+  // The reader's type is a dds::CheckedType: Fast DDS drops (inside take_next_sample) a sample
+  // it could not deserialise; count those.
+  dds::take_sample_failures();
+  const auto count_failures = [&] {
+    const dds::SampleFailures failed = dds::take_sample_failures();
+    if (failed.count() == 0) return;
+    stats_.record_bad_messages(dds::to_string(dds::SampleError::kMalformed), failed.malformed);
+    stats_.record_bad_messages(dds::to_string(dds::SampleError::kTooLarge), failed.too_large);
+    log_bad(dds::to_string(failed.last_error), failed.last_message);
+  };
+  for (;;) {
+    const bool taken = reader->take_next_sample(&msg, &info) == ReturnCode_t::RETCODE_OK;
+    count_failures();
+    if (!taken) break;
     if (!info.valid_data) continue;
     const auto arrival = std::chrono::steady_clock::now();
     if (dds::from_pointcloud2(msg, options_, conversion) != dds::CloudError::kNone) {
-      stats_.record_bad_message();
+      stats_.record_bad_message(dds::to_string(conversion.error));
       log_bad(dds::to_string(conversion.error), conversion.message);
       continue;
     }
     if (conversion.non_finite > 0) stats_.record_non_finite_points(conversion.non_finite);
     if (conversion.cloud.points.empty()) {
-      stats_.record_bad_message();
+      stats_.record_bad_message("empty");
       log_bad("empty", fmt::format("no finite point among {} point(s)", conversion.total_points));
       continue;
     }

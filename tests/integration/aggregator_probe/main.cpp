@@ -159,10 +159,8 @@ Keyframe bench_keyframe(KeyframeKey key, const Eigen::Isometry3d& pose,
 int main(int argc, char** argv) {
   CLI::App app{"aggregator_probe: map patches in, corrected poses out"};
   app.require_subcommand(1);
-  int domain = 0;
-  std::string profile = "loopback";
-  app.add_option("--domain", domain);
-  app.add_option("--profile", profile);
+  litamin2::testing::ProbeParticipantOptions dds_options;
+  dds_options.add_to(app);
 
   CLI::App* publish = app.add_subcommand("publish", "publish keyframes as map patches");
   std::string sequence;
@@ -201,7 +199,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   litamin2::dds::ParticipantPtr participant =
-      litamin2::testing::probe_participant(profile, domain, "aggregator_probe");
+      litamin2::testing::probe_participant(dds_options, "aggregator_probe");
   if (!participant) return 1;
 
   if (poses->parsed()) {

@@ -90,21 +90,20 @@ class StatusListener : public fdds::DataReaderListener {
 int main(int argc, char** argv) {
   CLI::App app{"daemon_probe: counts and checks litamin2d's odometry"};
   std::vector<std::string> streams;
-  std::string profile = "loopback", ready_file, poses_out;
-  int domain = 0;
+  litamin2::testing::ProbeParticipantOptions dds_options;
+  std::string ready_file, poses_out;
   std::size_t expect = 0;
   double timeout_s = 60.0;
   app.add_option("--stream", streams, "ID or ID=REFERENCE_POSES_KITTI (repeatable)")->required();
   app.add_option("--expect", expect, "odometry messages expected per stream")->required();
-  app.add_option("--domain", domain);
-  app.add_option("--profile", profile);
+  dds_options.add_to(app);
   app.add_option("--timeout", timeout_s);
   app.add_option("--ready-file", ready_file, "created once every odom reader is matched");
   app.add_option("--poses-out", poses_out, "prefix of files with the received poses (KITTI)");
   CLI11_PARSE(app, argc, argv);
 
   litamin2::dds::ParticipantPtr participant =
-      litamin2::testing::probe_participant(profile, domain, "daemon_probe");
+      litamin2::testing::probe_participant(dds_options, "daemon_probe");
   if (!participant) return 1;
   fdds::TypeSupport odom_type(new nav_msgs::msg::OdometryPubSubType());
   fdds::TypeSupport status_type(new diagnostic_msgs::msg::DiagnosticArrayPubSubType());

@@ -65,19 +65,18 @@ class Recorder : public fdds::DataReaderListener {
 int main(int argc, char** argv) {
   CLI::App app{"Records rt/<stream>/map_odom of litamin2-aggregator"};
   std::vector<std::string> streams;
-  std::string prefix = "map_odom_", profile = "loopback", topic_suffix = "/map_odom";
-  int domain = 0;
+  std::string prefix = "map_odom_", topic_suffix = "/map_odom";
+  litamin2::testing::ProbeParticipantOptions dds_options;
   double timeout_s = 600.0;
   app.add_option("--stream", streams, "stream id (repeatable)")->required();
   app.add_option("--out", prefix, "prefix of the output files");
-  app.add_option("--domain", domain);
-  app.add_option("--profile", profile);
+  dds_options.add_to(app);
   app.add_option("--timeout", timeout_s);
   CLI11_PARSE(app, argc, argv);
   std::signal(SIGTERM, [](int) { g_stop = true; });
   std::signal(SIGINT, [](int) { g_stop = true; });
 
-  auto participant = litamin2::testing::probe_participant(profile, domain, "map_odom_probe");
+  auto participant = litamin2::testing::probe_participant(dds_options, "map_odom_probe");
   if (!participant) return 1;
   fdds::TypeSupport type(new nav_msgs::msg::OdometryPubSubType());
   type.register_type(participant.get());

@@ -26,6 +26,11 @@ litamin2::msg::MapSummary to_map_summary_msg(const MapSummary& summary, Stamp st
 struct IngestCounters {
   std::uint64_t received = 0;
   std::uint64_t rejected = 0;
+  /// `rejected` by reason ("bad_covariance", "malformed_cdr", ...).
+  std::map<std::string, std::uint64_t> rejected_by_reason;
+  /// Samples (patches and odometry) that could not be deserialised at all, wherever Fast DDS
+  /// deserialised them.
+  std::uint64_t malformed_samples = 0;
   std::uint64_t samples_lost = 0;
   int writers = 0;
   std::size_t queued = 0;

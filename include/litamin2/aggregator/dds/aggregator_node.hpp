@@ -16,7 +16,10 @@
 #include "litamin2/aggregator/dds/patch_listener.hpp"
 #include "litamin2/aggregator/mapping_worker.hpp"
 #include "litamin2/aggregator/patch_queue.hpp"
+#include "litamin2/dds/checked_type.hpp"
 #include "litamin2/dds/participant_factory.hpp"
+#include "litamin2/msg/MapPatchPubSubTypes.h"
+#include "nav_msgs/msg/OdometryPubSubTypes.h"
 
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
@@ -77,6 +80,9 @@ class AggregatorNode {
   dds::ParticipantPtr participant_;
   eprosima::fastdds::dds::TypeSupport patch_type_, poses_type_, summary_type_, status_type_,
       odometry_type_;
+  /// The types of patch_type_ and odometry_type_ (owned by them), for their failure counts.
+  dds::CheckedType<litamin2::msg::MapPatchPubSubType>* checked_patch_type_ = nullptr;
+  dds::CheckedType<nav_msgs::msg::OdometryPubSubType>* checked_odometry_type_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;

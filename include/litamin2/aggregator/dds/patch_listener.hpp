@@ -1,10 +1,13 @@
 #pragma once
 /// The reader listener of rt/litamin2/map_patches: converts each MapPatch to a keyframe
 /// (dds::from_map_patch) and pushes it onto the PatchQueue; nothing else runs on the DDS
-/// thread. Invalid patches are counted and logged at most once per second.
+/// thread. Invalid patches (and samples the reader's dds::CheckedType could not deserialise)
+/// are counted by reason and logged at most once per second; they never reach the store.
 
 #include "litamin2/aggregator/patch_queue.hpp"
+#include "litamin2/dds/map_patch_conversion.hpp"
 #include "litamin2/service/log_rate_limiter.hpp"
+#include "litamin2/service/reason_counts.hpp"
 
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 
@@ -15,7 +18,8 @@ namespace litamin2::aggregator {
 
 class PatchListener : public eprosima::fastdds::dds::DataReaderListener {
  public:
-  explicit PatchListener(PatchQueue& queue) : queue_(queue) {}
+  explicit PatchListener(PatchQueue& queue, dds::PatchConversionOptions options = {})
+      : queue_(queue), options_(options) {}
 
   void on_data_available(eprosima::fastdds::dds::DataReader* reader) override;
   void on_subscription_matched(
@@ -25,7 +29,9 @@ class PatchListener : public eprosima::fastdds::dds::DataReaderListener {
                       const eprosima::fastdds::dds::SampleLostStatus& status) override;
 
   std::uint64_t received() const { return received_; }
-  std::uint64_t rejected() const { return rejected_; }
+  std::uint64_t rejected() const { return rejected_.total(); }
+  /// rejected() by reason (dds::to_string of the PatchError or SampleError).
+  std::map<std::string, std::uint64_t> rejected_by_reason() const { return rejected_.snapshot(); }
   std::uint64_t samples_lost() const { return samples_lost_; }
   int writers() const { return writers_; }
   /// CPU time of the DDS thread in the listener, seconds: taking samples (deserialisation) ...
@@ -34,10 +40,14 @@ class PatchListener : public eprosima::fastdds::dds::DataReaderListener {
   double convert_cpu_s() const { return 1e-9 * static_cast<double>(convert_cpu_ns_); }
 
  private:
+  /// Counts `count` rejected patches of one reason and logs (rate-limited) `message`.
+  void reject(const char* reason, std::uint64_t count, const std::string& message);
+
   PatchQueue& queue_;
+  const dds::PatchConversionOptions options_;
   service::LogRateLimiter bad_patch_log_;
   std::atomic<std::uint64_t> received_{0};
-  std::atomic<std::uint64_t> rejected_{0};
+  service::ReasonCounts rejected_;
   std::atomic<std::uint64_t> samples_lost_{0};
   std::atomic<int> writers_{0};
   std::atomic<std::uint64_t> take_cpu_ns_{0};
