@@ -25,6 +25,10 @@ const std::vector<std::pair<std::string, CovEnergy>> kCovEnergies = {
     {"squared", CovEnergy::kSquared}, {"linear", CovEnergy::kLinear}};
 const std::vector<std::pair<std::string, CorrespondenceMethod>> kCorrespondences = {
     {"voxel27", CorrespondenceMethod::kVoxel27}, {"kdtree", CorrespondenceMethod::kKdTree}};
+const std::vector<std::pair<std::string, TimeSource>> kTimeSources = {
+    {"field", TimeSource::kField},
+    {"azimuth", TimeSource::kAzimuth},
+    {"field_or_azimuth", TimeSource::kFieldOrAzimuth}};
 const std::vector<std::pair<std::string, RegularizationMethod>> kRegularizations = {
     {"eigen_clamp", RegularizationMethod::kEigenClamp}, {"plane", RegularizationMethod::kPlane}};
 const std::vector<std::pair<std::string, EgoFilterMode>> kEgoModes = {
@@ -163,6 +167,18 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node) {
   keyframe.read("angle_deg", config.keyframe.angle_deg);
   keyframe.reject_unknown();
 
+  YamlSection deskew(root.child("deskew"), "deskew");
+  DeskewConfig& d = config.deskew;
+  deskew.read("enabled", d.enabled);
+  deskew.read_enum("time_source", d.time_source, kTimeSources);
+  deskew.read("passes", d.passes);
+  YamlSection azimuth(deskew.child("azimuth"), "deskew.azimuth");
+  azimuth.read("period_s", d.azimuth.period_s);
+  azimuth.read("start_deg", d.azimuth.start_deg);
+  azimuth.read("clockwise", d.azimuth.clockwise);
+  azimuth.reject_unknown();
+  deskew.reject_unknown();
+
   root.reject_unknown();
   validate(config);
   return config;
@@ -238,7 +254,17 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "keyframe" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "distance" << YAML::Value << c.keyframe.distance;
   out << YAML::Key << "angle_deg" << YAML::Value << c.keyframe.angle_deg;
-  out << YAML::EndMap << YAML::EndMap;
+  out << YAML::EndMap;
+  const DeskewConfig& d = c.deskew;
+  out << YAML::Key << "deskew" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "enabled" << YAML::Value << d.enabled;
+  out << YAML::Key << "time_source" << YAML::Value << enum_name(d.time_source, kTimeSources);
+  out << YAML::Key << "passes" << YAML::Value << d.passes;
+  out << YAML::Key << "azimuth" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "period_s" << YAML::Value << d.azimuth.period_s;
+  out << YAML::Key << "start_deg" << YAML::Value << d.azimuth.start_deg;
+  out << YAML::Key << "clockwise" << YAML::Value << d.azimuth.clockwise;
+  out << YAML::EndMap << YAML::EndMap << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }
 

@@ -95,6 +95,7 @@ void validate(const TrackerConfig& c) {
           rec.share_smoothing, "in (0, 1]");
   require(c.keyframe.distance >= 0.0, "keyframe.distance", c.keyframe.distance, "at least 0");
   require(c.keyframe.angle_deg >= 0.0, "keyframe.angle_deg", c.keyframe.angle_deg, "at least 0");
+  validate(c.deskew);
 }
 
 }  // namespace litamin2

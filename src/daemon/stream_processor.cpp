@@ -18,7 +18,14 @@ StreamProcessor::StreamProcessor(StreamConfig config, ResultSink& sink, StreamSt
       stats_(stats) {}
 
 void StreamProcessor::process(Frame& frame) {
-  const FrameResult result = tracker_->process(frame.cloud);
+  // With the stream's tracker.deskew enabled, a scan with per-point times (read from the
+  // PointCloud2's time field, DaemonNode) is corrected for the motion within its sweep; one
+  // without is registered as it is. Invalid times throw and the frame counts as failed.
+  // Stamps of a stream increase (PointsListener drops the others) except after a publisher
+  // restarts: the tracker's clock restarts with it.
+  if (last_stamp_ && !(*last_stamp_ < frame.stamp)) tracker_->restart_clock();
+  last_stamp_ = frame.stamp;
+  const FrameResult result = tracker_->process(frame.cloud, SweepTiming{frame.stamp});
   // Without an extrinsic the published pose is the tracker's, bit for bit.
   const Eigen::Isometry3d sensor_pose = result.pose;
   const Eigen::Isometry3d pose =

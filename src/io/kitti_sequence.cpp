@@ -73,7 +73,8 @@ bool is_file(const fs::path& p) {
 
 }  // namespace
 
-ScanSequence::ScanSequence(const std::string& folder, const KittiBinOptions& bin_options)
+ScanSequence::ScanSequence(const std::string& folder, const KittiBinOptions& bin_options,
+                           bool pcd_scans)
     : folder_(folder), bin_options_(bin_options) {
   std::error_code ec;
   const fs::path dir(folder);
@@ -81,7 +82,12 @@ ScanSequence::ScanSequence(const std::string& folder, const KittiBinOptions& bin
   if (!fs::is_directory(dir, ec)) throw IoError(folder, "is not a folder");
 
   is_kitti_ = fs::is_directory(dir / "velodyne", ec);
-  if (is_kitti_) {
+  if (is_kitti_ && pcd_scans) {
+    if (!fs::is_directory(dir / "pcd", ec))
+      throw IoError(folder, "has no pcd/ folder of scans (litamin2-sim --sweep-motion writes one)");
+    paths_ = list_scans(dir / "pcd", {".pcd"});
+    if (paths_.empty()) throw IoError((dir / "pcd").string(), "holds no .pcd scans");
+  } else if (is_kitti_) {
     paths_ = list_scans(dir / "velodyne", {".bin"});
     if (paths_.empty()) throw IoError((dir / "velodyne").string(), "holds no .bin scans");
   } else {
@@ -98,7 +104,8 @@ ScanSequence::ScanSequence(const std::string& folder, const KittiBinOptions& bin
     std::vector<double> t = read_times(times.string());
     if (t.size() != paths_.size()) {
       throw IoError(times.string(), std::to_string(t.size()) + " timestamps for " +
-                                        std::to_string(paths_.size()) + " scans in velodyne/");
+                                        std::to_string(paths_.size()) + " scans in " +
+                                        (pcd_scans ? "pcd/" : "velodyne/"));
     }
     timestamps_ = std::move(t);
   }

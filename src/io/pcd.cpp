@@ -235,17 +235,64 @@ double decode(const Field& f, const char* p) {
 /// points of organised clouds); a coordinate beyond float range or an intensity that is not a
 /// finite float rejects the file (IoError): nothing is repaired.
 void append_point(const std::string& path, std::size_t index, PointCloud& cloud,
-                  const Eigen::Vector3d& p, const Field* intensity_field, double intensity) {
+                  const Eigen::Vector3d& p, const Field* intensity_field, double intensity,
+                  const Field* time_field, double time, std::vector<double>& times) {
   if (!p.allFinite()) return;
   constexpr double kFloatMax = std::numeric_limits<float>::max();
   if (p.cwiseAbs().maxCoeff() > kFloatMax)
     throw IoError(path, "point " + std::to_string(index) + ": a coordinate is beyond float range");
   cloud.points.push_back(p.cast<float>());
+  if (time_field) times.push_back(time);  // checked with the others (relative_times)
   if (!intensity_field) return;
   if (!(std::fabs(intensity) <= kFloatMax))
     throw IoError(path, "point " + std::to_string(index) + ": intensity " +
                             std::to_string(intensity) + " is not a finite float");
   cloud.intensities.push_back(static_cast<float>(intensity));
+}
+
+/// Per-point time fields as LiDAR drivers write them, in the order one is chosen when a file has
+/// several: Ouster's t, Velodyne's time, Hesai's timestamp, Livox's offset_time.
+constexpr const char* kTimeFields[] = {"t", "time", "timestamp", "offset_time"};
+
+/// The first per-point time field of kTimeFields in the file, or null.
+const Field* find_time_field(const std::string& path, const Header& header) {
+  for (const char* name : kTimeFields) {
+    if (const Field* f = find_field(path, header, name, false)) return f;
+  }
+  return nullptr;
+}
+
+/// The raw values of a time field as seconds relative to the sweep (PointCloud::times): integer
+/// fields are nanoseconds, float fields seconds; times within +-kMaxPointTime are relative (to
+/// the scan's stamp), larger ones absolute and taken relative to the scan's earliest point, the
+/// sweep start (a PCD has no stamp). Throws IoError for a non-finite time, absolute times in a
+/// float32 field (its 24 bits cannot resolve them) and a span beyond kMaxPointTime.
+std::vector<float> relative_times(const std::string& path, const Field& field,
+                                  const std::vector<double>& raw) {
+  const double unit = field.type == 'F' ? 1.0 : 1e-9;
+  const std::string who = "time field '" + field.name + "' (TYPE " + std::string(1, field.type) +
+                          " SIZE " + std::to_string(field.size) + ", " +
+                          (field.type == 'F' ? "seconds" : "nanoseconds") + ")";
+  double lo = 0.0, hi = 0.0;
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    if (!std::isfinite(raw[i]))
+      throw IoError(path, who + ": point " + std::to_string(i) + " has a non-finite time");
+    const double t = raw[i] * unit;
+    lo = i == 0 ? t : std::min(lo, t);
+    hi = i == 0 ? t : std::max(hi, t);
+  }
+  const bool relative = std::max(std::abs(lo), std::abs(hi)) <= kMaxPointTime;
+  if (!relative && field.type == 'F' && field.size == 4)
+    throw IoError(path, who + ": values up to " + std::to_string(hi) +
+                            " s are absolute times, which float32 cannot resolve");
+  if (hi - lo > kMaxPointTime)
+    throw IoError(path, who + ": the times span " + std::to_string(hi - lo) +
+                            " s, more than a sweep (at most 1 s)");
+  std::vector<float> times(raw.size());
+  const double origin = relative ? 0.0 : lo;
+  for (std::size_t i = 0; i < raw.size(); ++i)
+    times[i] = static_cast<float>(raw[i] * unit - origin);
+  return times;
 }
 
 }  // namespace
@@ -263,8 +310,15 @@ PointCloud read_pcd(const std::string& path) {
     }
   }
   const Field* fi = find_field(path, header, "intensity", false);
+  const Field* ft = find_time_field(path, header);
   const std::size_t n = *header.points;
   PointCloud cloud;
+  std::vector<double> raw_times;
+  // The cloud with its times, once every point is read.
+  auto finish = [&]() {
+    if (ft) cloud.times = relative_times(path, *ft, raw_times);
+    return cloud;
+  };
 
   if (header.data == "binary") {
     const std::size_t available = bytes.size() - header.data_offset;
@@ -276,13 +330,15 @@ PointCloud read_pcd(const std::string& path) {
     }
     cloud.points.reserve(n);
     if (fi) cloud.intensities.reserve(n);
+    if (ft) raw_times.reserve(n);
     for (std::size_t i = 0; i < n; ++i) {
       const char* rec = bytes.data() + header.data_offset + i * header.record_size;
       const Eigen::Vector3d p(decode(*fx, rec + fx->offset), decode(*fy, rec + fy->offset),
                               decode(*fz, rec + fz->offset));
-      append_point(path, i, cloud, p, fi, fi ? decode(*fi, rec + fi->offset) : 0.0);
+      append_point(path, i, cloud, p, fi, fi ? decode(*fi, rec + fi->offset) : 0.0, ft,
+                   ft ? decode(*ft, rec + ft->offset) : 0.0, raw_times);
     }
-    return cloud;
+    return finish();
   }
 
   // ASCII: one point per non-blank line.
@@ -313,14 +369,14 @@ PointCloud read_pcd(const std::string& path) {
       return *v;
     };
     append_point(path, read, cloud, Eigen::Vector3d(value(fx), value(fy), value(fz)), fi,
-                 fi ? value(fi) : 0.0);
+                 fi ? value(fi) : 0.0, ft, ft ? value(ft) : 0.0, raw_times);
     ++read;
   }
   if (read != n) {
     throw IoError(path, "truncated ASCII data: " + std::to_string(read) + " of " +
                             std::to_string(n) + " points present");
   }
-  return cloud;
+  return finish();
 }
 
 void write_pcd_binary(const std::string& path, const PointCloud& cloud) {

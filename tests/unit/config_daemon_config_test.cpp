@@ -40,6 +40,9 @@ TEST(DaemonConfig, ShippedDefaultDiscoversOnLoopback) {
   EXPECT_EQ(c.queue_depth, 4);
   EXPECT_EQ(c.outputs.status_topic, "rt/litamin2/status");
   EXPECT_EQ(c.log_level, "info");
+  // Deskew on (scans with per-point times), the rest of the tracker as config/tracker.yaml.
+  EXPECT_TRUE(c.tracker.deskew.enabled);
+  EXPECT_EQ(c.tracker.deskew.time_source, TimeSource::kField);
 }
 
 TEST(DaemonConfig, FullConfig) {

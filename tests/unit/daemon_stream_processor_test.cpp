@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <vector>
 
 using namespace litamin2;
@@ -121,4 +122,35 @@ TEST(StreamProcessor, ExtrinsicGivesTheBasePose) {
   }
   // A keyframe's pose is the sensor's pose in the odometry frame.
   EXPECT_TRUE(sink.keyframe_poses.front().isApprox(config.extrinsic, 1e-12));
+}
+
+TEST(StreamProcessor, DeskewingStreamUsesTheStampsAndSurvivesAPublisherRestart) {
+  // Scans with per-point times (here every point at 0.04 s: the times reach the tracker when
+  // they change the poses) and a stamp going back after frame 4, as a restarted publisher's.
+  std::vector<PointCloud> input = scans(8);
+  for (PointCloud& c : input) c.times.assign(c.size(), 0.04f);
+  StreamConfig config;
+  config.id = "car1";
+  config.tracker.deskew.enabled = true;
+  RecordingSink sink;
+  StreamStats stats;
+  StreamProcessor processor(config, sink, stats);
+  Tracker reference(config.tracker);
+  Tracker untimed(config.tracker);
+  bool differs = false;
+  for (std::size_t i = 0; i < input.size(); ++i) {
+    Frame f = frame_of(input[i], i);
+    if (i >= 5) f.stamp.nanoseconds -= 3'000'000'000;  // restarted at 5, 100 ms apart again
+    ASSERT_NO_THROW(processor.process(f)) << i;
+    if (i == 5) reference.restart_clock();
+    const FrameResult expected = reference.process(input[i], SweepTiming{f.stamp});
+    EXPECT_TRUE(expected.deskewed);
+    const FrameResult plain = untimed.process(input[i]);
+    differs = differs || !plain.pose.isApprox(expected.pose, 1e-12);
+    ASSERT_EQ(sink.odometry.size(), i + 1);
+    EXPECT_EQ(0, std::memcmp(sink.odometry.back().pose.matrix().data(),
+                             expected.pose.matrix().data(), 16 * sizeof(double)))
+        << i;
+  }
+  EXPECT_TRUE(differs) << "the per-point times did not reach the tracker";
 }

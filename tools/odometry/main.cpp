@@ -46,6 +46,8 @@ struct Options {
   bool quiet = false;
   bool loop_closure = false;
   std::string mapper_config_file;
+  bool deskew = false;
+  bool skip_bad_frames = false;
 };
 
 /// One line per loop: the two keyframes' scan indices (counted from the first scan run),
@@ -122,11 +124,16 @@ int run(const Options& options) {
     config.voxelizer.voxel_size = options.voxel_size;
     config.explicit_keys.insert("voxelizer.voxel_size");  // a sensor preset leaves it
   }
+  if (options.deskew) config.deskew.enabled = true;
   validate(config);
 
   io::KittiBinOptions bin;
   bin.vertical_angle_correction_deg = options.vertical_correction_deg;
-  const io::ScanSequence sequence(options.input, bin);
+  // Deskew needs per-point times: a KITTI sequence folder's scans with times are in its pcd/.
+  const bool pcd_scans = config.deskew.enabled &&
+                         fs::is_directory(fs::path(options.input) / "pcd") &&
+                         fs::is_directory(fs::path(options.input) / "velodyne");
+  const io::ScanSequence sequence(options.input, bin, pcd_scans);
   const auto [first, last] = frames_of(options.frames, sequence.size());
   const std::optional<Eigen::Isometry3d> tr = calibration(options, sequence);
   fs::create_directories(options.output);
@@ -149,9 +156,26 @@ int run(const Options& options) {
   tools::Progress progress("odometry", last - first);
   const auto start = std::chrono::steady_clock::now();
   for (std::size_t i = first; i < last; ++i) {
-    const PointCloud scan = sequence.load(i);
+    // The scan's stamp: times.txt as litamin2-replay stamps it, so that litamin2d deskews the
+    // same numbers.
+    const SweepTiming timing{Stamp::from_seconds(sequence.timestamp(i))};
+    PointCloud scan;
     FrameResult frame;
-    arena.execute([&] { frame = tracker.process(scan); });
+    try {
+      scan = sequence.load(i);
+    } catch (const io::IoError& e) {
+      if (!options.skip_bad_frames) throw;
+      // A corrupt file in a long run: logged, the pose extrapolated with the last motion.
+      std::fprintf(stderr, "litamin2-odometry: skipping frame %zu: %s\n", i, e.what());
+      frame = config.deskew.enabled ? tracker.skip_frame(timing) : tracker.skip_frame();
+      stats.add_skipped(i, sequence.path(i), e.what());
+      if (loop_closure) loop_closure->add(tracker, frame, timing.stamp);
+      poses.push_back(frame.pose);
+      continue;
+    }
+    arena.execute([&] {
+      frame = config.deskew.enabled ? tracker.process(scan, timing) : tracker.process(scan);
+    });
     stats.add(frame);
     if (loop_closure) loop_closure->add(tracker, frame, Stamp::from_seconds(sequence.timestamp(i)));
     poses.push_back(frame.pose);
@@ -202,6 +226,11 @@ int run(const Options& options) {
         stats.frames(), mode.c_str(), sensor.c_str(), used.voxelizer.voxel_size, threads,
         stats.frames_per_second(), stats.percentile_ms(50), stats.percentile_ms(99),
         stats.keyframes(), stats.failures());
+    if (config.deskew.enabled)
+      std::printf("deskew: %zu of %zu frames corrected (the others had no per-point times)\n",
+                  stats.deskewed(), stats.frames());
+    if (stats.skipped() > 0)
+      std::printf("%zu corrupt frame(s) skipped (stats.json lists them)\n", stats.skipped());
     if (loop_closure) {
       const mapping::MapperStats ms = loop_closure->mapper().stats();
       const mapping::MapperCpu cpu = loop_closure->mapper().cpu();
@@ -233,7 +262,13 @@ int main(int argc, char** argv) {
       "poses_tum.txt,\n"
       "config.yaml (the full config used), stats.json (speed, memory, accuracy if ground truth\n"
       "is known) and, with KITTI calibration, poses_kitti_cam.txt (camera-0 convention).\n"
-      "Exit status: 0 ok, 1 bad input, 3 some frames could not be registered."};
+      "With --deskew, each scan's points are corrected for the motion within its sweep before\n"
+      "registration, from their per-point times (PCD input with a time field; a KITTI folder's\n"
+      "pcd/ scans, as litamin2-sim --sweep-motion writes them, are then read instead of\n"
+      "velodyne/). With --skip-bad-frames a scan that cannot be read is logged and skipped, its\n"
+      "pose extrapolated with the previous motion, and the run goes on.\n"
+      "Exit status: 0 ok, 1 bad input (a corrupt scan without --skip-bad-frames), 3 some frames\n"
+      "could not be registered."};
   Options options;
   app.add_option("INPUT", options.input, "Sequence folder")->required();
   app.add_option("-o,--output", options.output, "Output folder (created)")->required();
@@ -256,6 +291,12 @@ int main(int argc, char** argv) {
   app.add_flag("--loop-closure", options.loop_closure,
                "Offline SLAM: close loops with the aggregator's mapping back end; poses_kitti.txt "
                "is then corrected and poses_odometry_kitti.txt holds the odometry alone");
+  app.add_flag("--deskew", options.deskew,
+               "Correct each scan for the motion within its sweep from its per-point times "
+               "(sets deskew.enabled; config/tracker.yaml's deskew section has the rest)");
+  app.add_flag("--skip-bad-frames", options.skip_bad_frames,
+               "Log a scan that cannot be read (truncated, corrupt) and go on: its pose keeps the "
+               "previous motion; stats.json lists the skipped files");
   app.add_option("--mapper-config", options.mapper_config_file,
                  "Mapping back-end config YAML (see config/mapper.yaml); with --loop-closure");
   app.set_version_flag("--version", std::string(litamin2::version()));

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <sstream>
 
@@ -14,6 +15,8 @@ void RunStats::add(const FrameResult& frame) {
   sum_.voxelize_ms += frame.times.voxelize_ms;
   sum_.register_ms += frame.times.register_ms;
   sum_.map_update_ms += frame.times.map_update_ms;
+  sum_.deskew_ms += frame.times.deskew_ms;
+  deskewed_ += frame.deskewed ? 1 : 0;
   keyframes_ += frame.keyframe ? 1 : 0;
   failures_ += (!frame.registered && total_ms_.size() > 1) ? 1 : 0;
   distributions_ += static_cast<std::size_t>(frame.source_distributions);
@@ -24,6 +27,32 @@ void RunStats::add(const FrameResult& frame) {
   recoveries_ += frame.recovered ? 1 : 0;
   self_hits_ += static_cast<std::size_t>(frame.self_hits);
 }
+
+void RunStats::add_skipped(std::size_t index, const std::string& path, const std::string& error) {
+  skipped_.push_back({index, path, error});
+}
+
+namespace {
+
+/// `text` as a JSON string.
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char code[8];
+      std::snprintf(code, sizeof(code), "\\u%04x", c);
+      out += code;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+}  // namespace
 
 double RunStats::frames_per_second() const {
   const double total = std::accumulate(total_ms_.begin(), total_ms_.end(), 0.0);
@@ -61,7 +90,9 @@ std::string RunStats::to_json(const std::string& mode, const std::string& sensor
       << ", \"max\": " << max_ms() << "},\n"
       << "  \"stage_mean_ms\": {\"voxelize\": " << sum_.voxelize_ms / n
       << ", \"register\": " << sum_.register_ms / n
-      << ", \"map_update\": " << sum_.map_update_ms / n << "},\n"
+      << ", \"map_update\": " << sum_.map_update_ms / n << ", \"deskew\": " << sum_.deskew_ms / n
+      << "},\n"
+      << "  \"deskewed_frames\": " << deskewed_ << ",\n"
       << "  \"mean_distributions_per_scan\": " << distributions_ / n << ",\n"
       << "  \"mean_newton_iterations\": " << iterations_ / n << ",\n"
       << "  \"mean_voxelizations\": " << voxelizations_ / n << ",\n"
@@ -71,7 +102,14 @@ std::string RunStats::to_json(const std::string& mode, const std::string& sensor
       << "  \"mean_self_hits_dropped\": " << self_hits_ / n << ",\n"
       << "  \"keyframes\": " << keyframes_ << ",\n"
       << "  \"registration_failures\": " << failures_ << ",\n"
-      << "  \"peak_memory_mib\": " << peak_memory_mib();
+      << "  \"peak_memory_mib\": " << peak_memory_mib() << ",\n"
+      << "  \"skipped_frames\": [";
+  for (std::size_t k = 0; k < skipped_.size(); ++k) {
+    out << (k ? ", " : "") << "{\"frame\": " << skipped_[k].index
+        << ", \"file\": " << json_string(skipped_[k].path)
+        << ", \"error\": " << json_string(skipped_[k].error) << "}";
+  }
+  out << "]";
   if (accuracy) {
     auto number = [](double v) { return std::isfinite(v) ? std::to_string(v) : "null"; };
     out << ",\n  \"accuracy\": {\"kitti_translation_percent\": "

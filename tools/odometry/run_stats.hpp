@@ -20,6 +20,8 @@ struct Accuracy {
 class RunStats {
  public:
   void add(const FrameResult& frame);
+  /// Frame `index` (file `path`) could not be read and was skipped (--skip-bad-frames).
+  void add_skipped(std::size_t index, const std::string& path, const std::string& error);
   std::size_t frames() const { return total_ms_.size(); }
   /// Frames per second of processing time (scan loading excluded).
   double frames_per_second() const;
@@ -27,6 +29,8 @@ class RunStats {
   double max_ms() const;
   std::size_t keyframes() const { return keyframes_; }
   std::size_t failures() const { return failures_; }
+  std::size_t skipped() const { return skipped_.size(); }
+  std::size_t deskewed() const { return deskewed_; }
 
   /// The stats.json document.
   std::string to_json(const std::string& mode, const std::string& sensor, double voxel_size,
@@ -45,6 +49,12 @@ class RunStats {
   std::size_t retries_ = 0;
   std::size_t recoveries_ = 0;
   std::size_t self_hits_ = 0;
+  std::size_t deskewed_ = 0;
+  struct Skipped {
+    std::size_t index;
+    std::string path, error;
+  };
+  std::vector<Skipped> skipped_;
 };
 
 /// Peak resident memory of this process, MiB.

@@ -6,6 +6,7 @@
 #include "litamin2/core/keyframe.hpp"
 #include "litamin2/core/registration.hpp"
 #include "litamin2/core/scan_filter.hpp"
+#include "litamin2/core/stamp.hpp"
 #include "litamin2/core/tracker_config.hpp"
 #include "litamin2/core/voxel_map.hpp"
 #include "litamin2/core/voxelizer.hpp"
@@ -20,7 +21,15 @@ struct StageTimes {
   double voxelize_ms = 0.0;
   double register_ms = 0.0;
   double map_update_ms = 0.0;
-  double total_ms() const { return voxelize_ms + register_ms + map_update_ms; }
+  /// Moving the points by the motion within the sweep (DeskewConfig), all passes.
+  double deskew_ms = 0.0;
+  double total_ms() const { return voxelize_ms + register_ms + map_update_ms + deskew_ms; }
+};
+
+/// When a scan was taken: its stamp, the reference time of its per-point times
+/// (PointCloud::times). Stamps of one stream must increase.
+struct SweepTiming {
+  Stamp stamp;
 };
 
 struct FrameResult {
@@ -50,6 +59,9 @@ struct FrameResult {
   bool recovered = false;
   int source_distributions = 0;
   int correspondences = 0;
+  /// The scan's points were moved by the motion within the sweep before registration
+  /// (DeskewConfig enabled and the scan had per-point times, or they came from the azimuth).
+  bool deskewed = false;
   StageTimes times;
 };
 
@@ -61,8 +73,24 @@ class Tracker {
   explicit Tracker(const TrackerConfig& config);
   ~Tracker();
 
-  /// Estimates the pose of the next scan of the stream.
+  /// Estimates the pose of the next scan of the stream, as it is (config.deskew is not used).
   FrameResult process(const PointCloud& scan);
+  /// The same, for a scan taken at `timing`: with config.deskew enabled, the scan's points are
+  /// first moved to the sensor frame at the stamp by the motion within the sweep (core/
+  /// deskew.hpp), and the pose is the sensor's at the stamp. Without deskew it is
+  /// process(scan), bit for bit. Throws std::invalid_argument (state unchanged) for a stamp
+  /// not after the previous one or invalid per-point times (point_times_error).
+  FrameResult process(const PointCloud& scan, const SweepTiming& timing);
+  /// A scan that could not be read: the pose is extrapolated by the constant velocity (the
+  /// previous frame's motion is kept over the gap), nothing is registered or added to the map.
+  FrameResult skip_frame();
+  /// The same for a scan taken at `timing`, which keeps a deskewing tracker's intervals in step
+  /// (throws std::invalid_argument for a stamp not after the previous one).
+  FrameResult skip_frame(const SweepTiming& timing);
+  /// Forgets the last stamp, so that the next timed scan may have any stamp (a restarted
+  /// publisher's clock); the motion is kept. The first scan after it is deskewed with the
+  /// predicted motion only.
+  void restart_clock() { has_stamp_ = false; }
 
   /// The map of distributions the next scan is registered to.
   const VoxelMap& map() const { return map_; }
@@ -78,6 +106,14 @@ class Tracker {
   bool is_keyframe(const Eigen::Isometry3d& pose) const;
   /// The scan without its self-hits (the scan itself when there is nothing to drop).
   const PointCloud& without_self_hits(const PointCloud& scan, int& dropped);
+  /// The scan's per-point times as deskew takes them (config.deskew.time_source), or null
+  /// when it has none to use.
+  const std::vector<float>* point_times(const PointCloud& scan);
+  /// Checks that `timing` follows the last stamp; returns the interval since, seconds (0 for
+  /// the first).
+  double interval_to(const SweepTiming& timing) const;
+  /// Replaces the map (the first scan alone) by the first scan deskewed with `twist`.
+  void rebuild_first_keyframe(const Twist& twist);
 
   TrackerConfig config_;
   EgoLearner ego_;
@@ -92,6 +128,17 @@ class Tracker {
   std::size_t frames_ = 0;
   /// Running typical inlier share of registered frames (RecoveryConfig), negative before any.
   double typical_share_ = -1.0;
+  /// Deskew state (tracker_timing.cpp): the last stamp, the interval before it (seconds, 0
+  /// before two frames), times from the azimuth, and the corrected scan.
+  bool has_stamp_ = false;
+  Stamp last_stamp_;
+  double last_interval_ = 0.0;
+  std::vector<float> azimuth_times_;
+  PointCloud deskewed_;
+  /// The first scan as measured and its times, until the second scan's motion deskews it in
+  /// hindsight (tracker_timing.cpp).
+  PointCloud first_scan_;
+  std::vector<float> first_times_;
 };
 
 /// The keyframe of a frame the tracker has just added to its map (frame.keyframe is true): the

@@ -3,6 +3,7 @@
 /// YAML by config/tracker_config_yaml.hpp).
 
 #include "litamin2/core/config_error.hpp"
+#include "litamin2/core/deskew.hpp"
 #include "litamin2/core/registration_config.hpp"
 #include "litamin2/core/scan_filter.hpp"
 #include "litamin2/core/voxel_map.hpp"
@@ -59,6 +60,8 @@ struct TrackerConfig {
   /// Dotted keys set explicitly (by a config file or a command-line option): a sensor preset
   /// leaves them as they are.
   std::set<std::string> explicit_keys;
+  /// Motion compensation within the sweep (Tracker::process with a SweepTiming).
+  DeskewConfig deskew;
 };
 
 /// Throws ConfigError on the first invalid value.

@@ -10,6 +10,7 @@
 #include "litamin2/daemon/stream_stats.hpp"
 
 #include <memory>
+#include <optional>
 
 namespace litamin2::daemon {
 
@@ -34,6 +35,8 @@ class StreamProcessor {
   ResultSink& sink_;
   StreamStats& stats_;
   std::uint64_t keyframes_ = 0;
+  /// The last frame's stamp (deskew's clock, Tracker::restart_clock).
+  std::optional<Stamp> last_stamp_;
 };
 
 /// The pose of the base in the odometry frame (the base at the first scan) from the sensor's

@@ -15,7 +15,7 @@ namespace litamin2::io {
 /// Scans of one sequence, in name order, with optional calibration, timestamps and ground truth.
 ///
 /// A folder containing `velodyne/` is a KITTI odometry sequence:
-///  - scans: velodyne/*.bin in (byte-wise) file-name order;
+///  - scans: velodyne/*.bin in (byte-wise) file-name order (or pcd/*.pcd, see the constructor);
 ///  - `calib.txt` if present -> velo_to_cam() (see read_kitti_velo_to_cam);
 ///  - `times.txt` if present -> timestamps (one number per line; the count must equal the number
 ///    of scans), else scan i is at i * 0.1 s;
@@ -28,7 +28,12 @@ class ScanSequence {
  public:
   /// Opens a folder. Throws IoError if it does not exist, is not a folder, holds no scans, or
   /// if times.txt / calib.txt / ground truth are present but unreadable or inconsistent.
-  explicit ScanSequence(const std::string& folder, const KittiBinOptions& bin_options = {});
+  /// With `pcd_scans`, a KITTI sequence folder's scans are its pcd/*.pcd files instead of
+  /// velodyne/*.bin (litamin2-sim --sweep-motion writes the same scans there with per-point
+  /// times); times, calibration and ground truth stay the folder's. A folder without pcd/ is
+  /// then an IoError; a plain folder is read as always.
+  explicit ScanSequence(const std::string& folder, const KittiBinOptions& bin_options = {},
+                        bool pcd_scans = false);
 
   /// Number of scans.
   std::size_t size() const { return paths_.size(); }

@@ -120,9 +120,12 @@ DaemonNode::Stream& DaemonNode::add_stream(StreamConfig config) {
   s.processor = std::make_unique<StreamProcessor>(s.config, *s.sink, s.stats);
   StreamProcessor* processor = s.processor.get();
   s.handle = scheduler_->add_stream(s.config.id, [processor](Frame& f) { processor->process(f); });
-  // LiTAMIN2 uses only x, y, z: the intensity field is not read.
+  // LiTAMIN2 uses only x, y, z (the intensity field is not read), and the per-point time when
+  // the stream deskews (tracker.deskew.enabled): a malformed or out-of-sweep time field is a
+  // bad message, counted and dropped.
   dds::CloudConversionOptions conversion;
   conversion.read_intensity = false;
+  conversion.read_time = s.config.tracker.deskew.enabled;
   conversion.max_points = static_cast<std::size_t>(config_.limits.max_points_per_scan);
   s.listener =
       std::make_unique<PointsListener>(s.config.id, *scheduler_, s.handle, s.stats, conversion);

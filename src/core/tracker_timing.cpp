@@ -1,0 +1,118 @@
+// The tracker's timed entry points: deskew (added to LiTAMIN2, core/deskew.hpp) before the
+// unchanged per-scan pipeline of Tracker::process(scan), and frames skipped over a gap.
+
+#include "litamin2/core/deskew.hpp"
+#include "litamin2/core/scan_registration.hpp"
+#include "litamin2/core/stopwatch.hpp"
+#include "litamin2/core/tracker.hpp"
+
+#include <chrono>
+#include <stdexcept>
+#include <string>
+
+namespace litamin2 {
+
+double Tracker::interval_to(const SweepTiming& timing) const {
+  if (!has_stamp_) return 0.0;
+  if (!(last_stamp_ < timing.stamp))
+    throw std::invalid_argument("Tracker: stamp " + std::to_string(timing.stamp.nanoseconds) +
+                                " ns is not after the previous scan's " +
+                                std::to_string(last_stamp_.nanoseconds) + " ns");
+  return static_cast<double>(timing.stamp.nanoseconds - last_stamp_.nanoseconds) * 1e-9;
+}
+
+const std::vector<float>* Tracker::point_times(const PointCloud& scan) {
+  const DeskewConfig& d = config_.deskew;
+  if (d.time_source != TimeSource::kAzimuth && scan.has_times()) return &scan.times;
+  if (d.time_source == TimeSource::kField) return nullptr;
+  times_from_azimuth(scan, d.azimuth, azimuth_times_);
+  return &azimuth_times_;
+}
+
+FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) {
+  const DeskewConfig& d = config_.deskew;
+  if (!d.enabled) return process(scan);
+  const double interval = interval_to(timing);
+  if (const auto why = point_times_error(scan)) throw std::invalid_argument("Tracker: " + *why);
+  const std::vector<float>* times = point_times(scan);
+  const PointCloud* input = &scan;
+  StageTimes first_pass;
+  if (times) {
+    // Pass 1: the motion within this sweep predicted by constant velocity, the previous frame's
+    // motion over its interval (none before two frames).
+    Twist twist;
+    if (frames_ >= 2 && last_interval_ > 0.0) twist = twist_from_motion(velocity_, last_interval_);
+    auto start = std::chrono::steady_clock::now();
+    deskew(scan, *times, twist, deskewed_);
+    first_pass.deskew_ms += elapsed_ms(start);
+    // Pass 2: register the corrected scan, and correct the raw scan again with the motion
+    // registration found from the last pose to this one (a frame fresher than the
+    // prediction's); process() below registers that and puts it into the map. At the second
+    // scan (with either number of passes) the map is the first scan, taken with no motion
+    // known: it is deskewed in hindsight with this motion (constant velocity over both sweeps)
+    // and the map rebuilt from it, then the motion is registered again against that map.
+    const bool redo_first = frames_ == 1 && !first_scan_.empty();
+    if ((d.passes == 2 || redo_first) && interval > 0.0 && frames_ > 0 && !map_.empty() &&
+        search_) {
+      for (int round = 0; round < (redo_first ? 2 : 1); ++round) {
+        const ScanRegistration registered = register_scan(deskewed_, voxelizer_, map_, *search_,
+                                                          pose_ * velocity_, config_.registration);
+        first_pass.voxelize_ms += registered.voxelize_ms;
+        first_pass.register_ms += registered.register_ms;
+        if (!registered.result.valid) break;
+        twist = twist_from_motion(pose_.inverse() * registered.result.pose, interval);
+        start = std::chrono::steady_clock::now();
+        deskew(scan, *times, twist, deskewed_);
+        first_pass.deskew_ms += elapsed_ms(start);
+        if (redo_first) rebuild_first_keyframe(twist);
+      }
+    }
+    input = &deskewed_;
+  }
+  if (frames_ == 0 && times) {
+    first_scan_ = scan;
+    first_times_ = *times;
+  } else if (frames_ >= 1) {
+    first_scan_ = PointCloud();
+    first_times_.clear();
+  }
+  FrameResult frame = process(*input);
+  frame.deskewed = times != nullptr;
+  frame.times.voxelize_ms += first_pass.voxelize_ms;
+  frame.times.register_ms += first_pass.register_ms;
+  frame.times.deskew_ms += first_pass.deskew_ms;
+  has_stamp_ = true;
+  last_stamp_ = timing.stamp;
+  // After restart_clock() there is no interval: the previous one still belongs to velocity_.
+  if (interval > 0.0) last_interval_ = interval;
+  return frame;
+}
+
+void Tracker::rebuild_first_keyframe(const Twist& twist) {
+  PointCloud corrected;
+  deskew(first_scan_, first_times_, twist, corrected);
+  // The map holds the first scan alone (frames_ == 1), at the first pose, pose_.
+  map_ = VoxelMap(config_.voxelizer, config_.map);
+  voxelizer_.voxelize(corrected, pose_);
+  map_.add_keyframe(voxelizer_.last_voxels(), pose_);
+  search_ = make_correspondence_search(config_.registration.correspondence, map_);
+}
+
+FrameResult Tracker::skip_frame() {
+  FrameResult frame;
+  pose_ = pose_ * velocity_;
+  frame.pose = pose_;
+  ++frames_;
+  return frame;
+}
+
+FrameResult Tracker::skip_frame(const SweepTiming& timing) {
+  const double interval = interval_to(timing);
+  FrameResult frame = skip_frame();
+  has_stamp_ = true;
+  last_stamp_ = timing.stamp;
+  if (interval > 0.0) last_interval_ = interval;
+  return frame;
+}
+
+}  // namespace litamin2
