@@ -83,14 +83,21 @@ struct KeyframeStore::Impl {
     }
     Statement& s = *insert_node;
     ResetOnExit reset{s};
+    bind_keyframe_row(s, kf, pose, covariance, d);
+    s.step(what);
+  }
+
+  /// The columns keyframes and nodes share: (stream, id, stamp, voxel size, pose, covariance)
+  /// and, seventh, the row's own blob (distributions or descriptor).
+  static void bind_keyframe_row(Statement& s, const Keyframe& kf, const std::string& pose,
+                                const std::string& covariance, const std::string& blob) {
     s.bind_text(1, kf.key.stream);
     s.bind(2, static_cast<std::int64_t>(kf.key.id));
     s.bind(3, kf.stamp.nanoseconds);
     s.bind(4, kf.voxel_size);
     s.bind_blob(5, pose);
     s.bind_blob(6, covariance);
-    s.bind_blob(7, d);
-    s.step(what);
+    s.bind_blob(7, blob);
   }
 
   void require_writable(const char* operation) const {
@@ -116,13 +123,7 @@ struct KeyframeStore::Impl {
     const std::string covariance = encode_matrix6(kf.covariance);
     Statement& s = *insert_keyframe;
     ResetOnExit reset{s};
-    s.bind_text(1, kf.key.stream);
-    s.bind(2, static_cast<std::int64_t>(kf.key.id));
-    s.bind(3, kf.stamp.nanoseconds);
-    s.bind(4, kf.voxel_size);
-    s.bind_blob(5, pose);
-    s.bind_blob(6, covariance);
-    s.bind_blob(7, distributions);
+    bind_keyframe_row(s, kf, pose, covariance, distributions);
     s.step(what);
     return sqlite3_changes(db.get()) > 0;
   }
