@@ -69,6 +69,15 @@ void pointcloud2_seeds() {
   write(h, "xyz_float32", cdr<sensor_msgs::msg::PointCloud2PubSubType>(xyz));
   auto xyzi = dds::to_pointcloud2(small_cloud(true), Stamp::from_seconds(11.0), "lidar");
   write(h, "xyzi_float32", cdr<sensor_msgs::msg::PointCloud2PubSubType>(xyzi));
+  // Per-point times as each vendor's driver writes them (the fields deskew reads).
+  PointCloud timed = small_cloud(true);
+  for (std::size_t i = 0; i < timed.points.size(); ++i) timed.times.push_back(0.004f * i);
+  for (const dds::TimeLayout layout : {dds::TimeLayout::kVelodyne, dds::TimeLayout::kOuster,
+                                       dds::TimeLayout::kHesai, dds::TimeLayout::kLivox}) {
+    auto msg = dds::to_pointcloud2(timed, Stamp::from_seconds(12.0), "lidar", layout);
+    write(h, std::string("times_") + dds::to_string(layout),
+          cdr<sensor_msgs::msg::PointCloud2PubSubType>(msg));
+  }
   // Organised 4 x 6, with "no return" NaN points.
   auto organised = xyzi;
   organised.height(4);
