@@ -30,6 +30,7 @@ struct Preset {
   int min_points;
   double max_isotropy;
   double isotropy_min_share;
+  double line_gate;
   int cov_min_points;
   double sigma_icp;
   double keyframe_distance;
@@ -40,13 +41,10 @@ struct Preset {
 /// sensors", measured a reason to.
 Preset preset_of(SensorModel model) {
   const TrackerConfig d;
-  Preset p{d.voxelizer.voxel_size,
-           d.voxelizer.min_points,
-           d.registration.max_isotropy,
-           d.registration.isotropy_min_share,
-           d.registration.cov_min_points,
-           d.registration.sigma_icp,
-           d.keyframe.distance};
+  Preset p{d.voxelizer.voxel_size,      d.voxelizer.min_points,
+           d.registration.max_isotropy, d.registration.isotropy_min_share,
+           d.registration.line_gate,    d.registration.cov_min_points,
+           d.registration.sigma_icp,    d.keyframe.distance};
   if (model == SensorModel::kVlp16 || model == SensorModel::kHdl32) {
     // The isotropy gate keeps 13 % of the correspondences on the real VLP-16 drive.
     p.isotropy_min_share = 0.25;
@@ -71,6 +69,8 @@ const std::vector<Key>& keys() {
        [](const Preset& p, TrackerConfig& c) {
          c.registration.isotropy_min_share = p.isotropy_min_share;
        }},
+      {"registration.line_gate",
+       [](const Preset& p, TrackerConfig& c) { c.registration.line_gate = p.line_gate; }},
       {"registration.cov_min_points",
        [](const Preset& p, TrackerConfig& c) { c.registration.cov_min_points = p.cov_min_points; }},
       {"registration.sigma_icp",
