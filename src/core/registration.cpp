@@ -30,6 +30,12 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
       combined_is_round(target.cov, rotated_cov, config.lambda, config.max_isotropy)) {
     return;
   }
+  // Line-like combined distributions (not in the paper, RegistrationConfig::line_gate): two
+  // parallel ring arcs, whose position across the line is partly the sensor's, not the world's.
+  if (config.line_gate > 0.0 &&
+      combined_spread(target.cov, rotated_cov, config.lambda) < config.line_gate) {
+    return;
+  }
   // ICP term, Eq. 3, with its robust weight, Eq. 5.
   const Eigen::Matrix3d precision = combined_precision(target.cov, rotated_cov, config.lambda);
   const IcpTerm icp = evaluate_icp_term(target.mean, y, precision);
@@ -119,16 +125,17 @@ RegistrationResult register_distributions(const std::vector<Distribution>& sourc
   RegistrationResult result;
   result.pose = initial;
   NearestCache cache(search, map.distributions(), source.size());
-  // Where the isotropy gate leaves too few correspondences (a scan of little flat structure, or
-  // a sparse scan of mostly round voxels), the scan is registered with every correspondence
-  // instead, as in the paper.
+  // Where the isotropy and line gates leave too few correspondences (a scan of little flat
+  // structure, or a sparse scan of mostly round voxels), the scan is registered with every
+  // correspondence instead, as in the paper.
   RegistrationConfig active = config;
   for (int iteration = 0; iteration < config.max_iterations; ++iteration) {
     CostEvaluation eval = evaluate_cost(source, map, search, result.pose, active, &cache);
-    if (active.max_isotropy < 1.0 &&
+    if ((active.max_isotropy < 1.0 || active.line_gate > 0.0) &&
         (eval.correspondences < config.min_correspondences ||
          eval.correspondences < config.isotropy_min_share * eval.matched)) {
       active.max_isotropy = 1.0;
+      active.line_gate = 0.0;
       eval = evaluate_cost(source, map, search, result.pose, active, &cache);
     }
     result.iterations = iteration + 1;

@@ -59,6 +59,8 @@ void validate(const TrackerConfig& c) {
           r.max_isotropy, "in (0, 1]; 1 keeps every correspondence");
   require(r.isotropy_min_share >= 0.0 && r.isotropy_min_share <= 1.0,
           "registration.isotropy_min_share", r.isotropy_min_share, "in [0, 1]; 0 always gates");
+  require(r.line_gate >= 0.0 && r.line_gate < 1.0, "registration.line_gate", r.line_gate,
+          "in [0, 1); 0 keeps every line-like correspondence");
   require(r.lambda >= 0.0, "registration.lambda", r.lambda, "at least 0");
   require(r.max_correspondence_distance >= 0.0, "registration.max_correspondence_distance",
           r.max_correspondence_distance, "at least 0; 0 means one voxel");

@@ -45,10 +45,12 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   config.keyframe.angle_deg = 7.25;
   config.map.radius = 80.0;
   config.registration.max_isotropy = 0.125;
+  config.registration.line_gate = 0.0625;
   const TrackerConfig back = tracker_config_from_yaml(YAML::Load(tracker_config_to_yaml(config)));
   EXPECT_EQ(tracker_config_to_yaml(back), tracker_config_to_yaml(config));
   EXPECT_EQ(back.voxelizer.voxel_size, 2.5);
   EXPECT_EQ(back.registration.correspondence, CorrespondenceMethod::kVoxel27);
+  EXPECT_EQ(back.registration.line_gate, 0.0625);
 }
 
 TEST(TrackerConfigYaml, ErrorsNameKeyAndValue) {
@@ -70,6 +72,10 @@ TEST(TrackerConfigYaml, ErrorsNameKeyAndValue) {
   EXPECT_NE(error_of("registration: {max_isotropy: 0}").find("registration.max_isotropy: 0"),
             std::string::npos);
   EXPECT_NE(error_of("registration: {max_isotropy: 1.5}").find("registration.max_isotropy: 1.5"),
+            std::string::npos);
+  EXPECT_NE(error_of("registration: {line_gate: -0.1}").find("registration.line_gate: -0.1"),
+            std::string::npos);
+  EXPECT_NE(error_of("registration: {line_gate: 1}").find("registration.line_gate: 1"),
             std::string::npos);
   EXPECT_NE(error_of("registration: {max_iterations: 0}").find("registration.max_iterations: 0"),
             std::string::npos);

@@ -33,6 +33,17 @@ inline double combined_isotropy(const Eigen::Matrix3d& cq, const Eigen::Matrix3d
   return eig.eigenvalues()(0) / eig.eigenvalues()(2);
 }
 
+/// Middle over largest eigenvalue of the combined covariance Cq + R Cp R^T + lambda I of Eq. 3:
+/// near 0 only for a line (both distributions line-like and parallel), near 1 for a plane or a
+/// round distribution.
+inline double combined_spread(const Eigen::Matrix3d& cq, const Eigen::Matrix3d& rotated_cp,
+                              double lambda) {
+  const Eigen::Matrix3d combined = cq + rotated_cp + lambda * Eigen::Matrix3d::Identity();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(combined, Eigen::EigenvaluesOnly);
+  return eig.eigenvalues()(1) / eig.eigenvalues()(2);
+}
+
 /// combined_isotropy(cq, rotated_cp, lambda) > max_isotropy, from the trace and determinant
 /// where they settle it (most distributions are clearly flat), else from the eigenvalues.
 /// With eigenvalues a <= b <= c of the combined covariance (trace s, determinant d):

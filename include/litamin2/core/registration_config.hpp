@@ -54,13 +54,27 @@ struct RegistrationConfig {
   /// normal, along which the offset is small. If fewer than min_correspondences pass, or fewer
   /// than isotropy_min_share of the matched ones, the scan is registered with all. 0.05 measured
   /// 3x less drift than 1 on simulated sequences and is the smallest tried that keeps the real
-  /// KITTI pair test (docs/accuracy.md, "Pitch bias").
+  /// KITTI pair test (docs/accuracy.md, "Pitch bias"). The vlp16 preset sets 1: on 16 beams
+  /// the round voxels hold the horizontal constraints (docs/accuracy.md, "Line-like
+  /// correspondences").
   double max_isotropy = 0.05;
   /// The isotropy gate is applied only while it keeps at least this share of the matched
   /// correspondences (0: always). On simulated HDL-64 scans and the real KITTI pair it keeps
   /// 56-60 %; on the real VLP-16 drive 13 %, which leaves too few walls to fix the horizontal
   /// pose (docs/accuracy.md, "Sparse sensors"). Set by the sparse sensors' presets.
   double isotropy_min_share = 0.0;
+  /// Correspondences whose combined covariance Cq + R Cp R^T (Eq. 3) is a line, middle over
+  /// largest eigenvalue below this, are left out of both terms (0: none, as in the paper); for
+  /// two equal arcs at an angle a that ratio is (1 - cos a) / (1 + cos a), 0.1 at 35 deg. A
+  /// 16-beam ring crosses a 3 m voxel as one arc; where the map voxel is also one ring's arc
+  /// (a map of few scans: at the start, after a stop) the two arcs are parallel lines, and
+  /// Eq. 3's precision then weights both directions across the line. One of them is along the
+  /// surface (radially on the road, vertically on a wall), where the arc's position is set by
+  /// the sensor's pose and beam, not by the world: the arcs coincide at zero motion and pull
+  /// the scan back to the previous scan's pose. If fewer than min_correspondences pass, the
+  /// scan is registered with all (as for the isotropy gate). The vlp16 preset sets 0.1
+  /// (docs/accuracy.md, "Line-like correspondences").
+  double line_gate = 0.0;
   /// Form of the Cov term's energy.
   CovEnergy cov_energy = CovEnergy::kLinear;
   /// Treatment of the Cov term's Hessian.
