@@ -2,7 +2,7 @@
 // (rt/litamin2/map_patches), keeps every keyframe in a durable SQLite store, finds loops within
 // and between streams, optimises the pose graph and publishes corrected keyframe poses, a map
 // summary and a status. Runs under systemd as Type=notify (READY, WATCHDOG, STOPPING, STATUS).
-// `litamin2-aggregator export` writes a store's map (PLY) and trajectories (KITTI, TUM).
+// `litamin2-aggregator export` writes a store's map (PLY or PCD) and trajectories (KITTI, TUM).
 
 #include "common/cli.hpp"
 #include "litamin2/aggregator/dds/aggregator_node.hpp"
@@ -98,11 +98,13 @@ int main(int argc, char** argv) {
   app.add_flag("--check-config", check_config, "validate the configuration and exit");
 
   CLI::App* exporter = app.add_subcommand(
-      "export", "write the map (PLY) and trajectories (KITTI, TUM) of a store, read-only");
-  std::string store_path, map_ply, trajectories, export_config, box;
+      "export", "write the map (PLY or PCD) and trajectories (KITTI, TUM) of a store, read-only");
+  std::string store_path, map_file, trajectories, export_config, box;
   bool replay = false;
   exporter->add_option("--store", store_path, "the aggregator's store (SQLite)")->required();
-  exporter->add_option("--map", map_ply, "global map of distributions (.ply)");
+  exporter->add_option("--map", map_file,
+                       "global map of distributions: FILE.ply (binary PLY) or FILE.pcd (binary "
+                       "PCD)");
   exporter->add_option("--trajectories", trajectories,
                        "folder for <stream>_kitti.txt and <stream>_tum.txt");
   exporter->add_flag("--replay", replay,
@@ -116,12 +118,16 @@ int main(int argc, char** argv) {
                        "tiles that meet it are read");
   if (const auto status = tools::parse_cli(app, argc, argv)) return *status;
   if (exporter->parsed()) {
-    if (map_ply.empty() && trajectories.empty()) {
+    if (map_file.empty() && trajectories.empty()) {
       return tools::usage_error(app.get_name(), "export: give --map and/or --trajectories");
     }
     ExportOptions options;
     options.store = store_path;
-    options.map_ply = map_ply;
+    if (!map_file.empty() && !map_format(map_file))
+      return tools::usage_error(app.get_name(), "export: --map " + map_file +
+                                                    ": unsupported map format (use a .ply or "
+                                                    ".pcd file name)");
+    options.map_file = map_file;
     options.trajectories_dir = trajectories;
     options.replay = replay;
     if (!box.empty()) {
