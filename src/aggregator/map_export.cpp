@@ -1,18 +1,62 @@
 #include "litamin2/aggregator/map_export.hpp"
 
 #include "litamin2/io/io_error.hpp"
+#include "litamin2/io/pcd.hpp"
 #include "litamin2/io/ply.hpp"
 #include "litamin2/io/trajectory.hpp"
 
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 #include <system_error>
 
 namespace litamin2::aggregator {
+
+namespace {
+
+/// The least eigenvector of a distribution's covariance (its surface normal), with nz >= 0.
+Eigen::Vector3d normal_of(const Eigen::Matrix3d& cov) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(cov);
+  Eigen::Vector3d n = eigen.eigenvectors().col(0);
+  if (n.z() < 0.0) n = -n;
+  return n;
+}
+
+}  // namespace
+
+std::optional<MapFormat> map_format(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".ply") return MapFormat::kPly;
+  if (ext == ".pcd") return MapFormat::kPcd;
+  return std::nullopt;
+}
+
+void write_map_pcd(const std::string& path, const std::vector<Distribution>& map) {
+  PointCloud cloud;
+  cloud.points.reserve(map.size());
+  static const char* names[] = {"c00", "c01", "c02", "c11", "c12", "c22", "nx", "ny", "nz"};
+  std::vector<io::PcdField> fields;
+  for (const char* name : names) fields.push_back({name, 'F', 4, {}});
+  fields.push_back({"count", 'U', 4, {}});
+  for (io::PcdField& f : fields) f.values.reserve(map.size());
+  for (const Distribution& d : map) {
+    cloud.points.push_back(d.mean.cast<float>());
+    const Eigen::Matrix3d& c = d.cov;
+    const Eigen::Vector3d n = normal_of(c);
+    const double row[] = {c(0, 0), c(0, 1), c(0, 2), c(1, 1), c(1, 2),
+                          c(2, 2), n.x(),   n.y(),   n.z(),   static_cast<double>(d.count)};
+    for (std::size_t i = 0; i < fields.size(); ++i) fields[i].values.push_back(row[i]);
+  }
+  io::write_pcd_binary(path, cloud, fields);
+}
 
 void write_map_ply(const std::string& path, const std::vector<Distribution>& map) {
   static const std::vector<std::string> names = {"x",   "y",   "z",  "c00", "c01", "c02",  "c11",
@@ -20,9 +64,7 @@ void write_map_ply(const std::string& path, const std::vector<Distribution>& map
   std::vector<float> values;
   values.reserve(map.size() * names.size());
   for (const Distribution& d : map) {
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(d.cov);
-    Eigen::Vector3d n = eigen.eigenvectors().col(0);
-    if (n.z() < 0.0) n = -n;
+    const Eigen::Vector3d n = normal_of(d.cov);
     const Eigen::Matrix3d& c = d.cov;
     const double row[] = {d.mean.x(),
                           d.mean.y(),
@@ -96,6 +138,12 @@ std::vector<Distribution> map_in_box(mapping::TileMap& tiles,
 }
 
 ExportResult export_store(const ExportOptions& options) {
+  const std::optional<MapFormat> format = options.map_file.empty()
+                                              ? std::optional<MapFormat>(MapFormat::kPly)
+                                              : map_format(options.map_file);
+  if (!format)
+    throw std::invalid_argument("--map " + options.map_file +
+                                ": unsupported map format (use a .ply or .pcd file name)");
   CoreOptions core_options;
   core_options.recovery =
       options.replay ? CoreOptions::Recovery::kReplay : CoreOptions::Recovery::kTables;
@@ -107,13 +155,16 @@ ExportResult export_store(const ExportOptions& options) {
   result.keyframes = mapper.stats().keyframes;
   result.streams = mapper.stats().streams;
   result.loops = mapper.loops().size();
-  if (!options.map_ply.empty()) {
+  if (!options.map_file.empty()) {
     // The keyframes the aggregator had not fused into the tiles yet (all, replayed), in memory.
     core.update_map(0);
     const std::vector<Distribution> map = map_in_box(core.tiles(), options.box, &result.tiles);
     result.voxels = map.size();
-    write_map_ply(options.map_ply, map);
-    result.files.push_back(options.map_ply);
+    if (*format == MapFormat::kPcd)
+      write_map_pcd(options.map_file, map);
+    else
+      write_map_ply(options.map_file, map);
+    result.files.push_back(options.map_file);
   }
   if (!options.trajectories_dir.empty()) {
     // frames.txt: which frame each stream's trajectory is in (the map frame once a loop has

@@ -85,7 +85,8 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
     full_pass.read("on_stop", config.full_pass.on_stop);
     full_pass.reject_unknown();
   }
-  config.watchdog = service::watchdog_config_from_yaml(root.child("watchdog"), 86400.0);
+  config.watchdog =
+      service::watchdog_config_from_yaml(root.child("watchdog"), 86400.0, config.watchdog);
   service::read_log_level(root, config.log_level);
   root.reject_unknown();
   validate(config);

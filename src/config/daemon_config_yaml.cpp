@@ -35,7 +35,8 @@ YAML::Node merge(const YAML::Node& base, const YAML::Node& over, const std::stri
 
 /// Parses a tracker section, naming keys relative to `path` in errors.
 TrackerConfig parse_tracker(const YAML::Node& node, const std::string& path) {
-  return read_section(path, [&] { return tracker_config_from_yaml(node); });
+  return read_section(path,
+                      [&] { return tracker_config_from_yaml(node, daemon_tracker_defaults()); });
 }
 
 std::vector<double> numbers(const YAML::Node& node, const std::string& path) {
@@ -175,7 +176,8 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
     outputs.reject_unknown();
   }
 
-  config.watchdog = service::watchdog_config_from_yaml(root.child("watchdog"), 3600.0);
+  config.watchdog =
+      service::watchdog_config_from_yaml(root.child("watchdog"), 3600.0, config.watchdog);
   service::read_log_level(root, config.log_level);
   root.reject_unknown();
   validate(config);

@@ -46,8 +46,9 @@ SecurityConfig security_config_from_yaml(const YAML::Node& node) {
   return config;
 }
 
-WatchdogConfig watchdog_config_from_yaml(const YAML::Node& node, double max_stall_timeout_s) {
-  WatchdogConfig config;
+WatchdogConfig watchdog_config_from_yaml(const YAML::Node& node, double max_stall_timeout_s,
+                                         const WatchdogConfig& defaults) {
+  WatchdogConfig config = defaults;
   YamlSection watchdog(node, "watchdog");
   watchdog.read("enabled", config.enabled);
   watchdog.read_range("stall_timeout_s", config.stall_timeout_s, 0.1, max_stall_timeout_s);

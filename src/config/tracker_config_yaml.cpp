@@ -93,7 +93,11 @@ void read_scales(YamlSection& section, std::vector<double>& scales) {
 }  // namespace
 
 TrackerConfig tracker_config_from_yaml(const YAML::Node& node) {
-  TrackerConfig config;
+  return tracker_config_from_yaml(node, TrackerConfig{});
+}
+
+TrackerConfig tracker_config_from_yaml(const YAML::Node& node, const TrackerConfig& base) {
+  TrackerConfig config = base;
   YamlSection root(node, "");
   // Keys a sensor preset manages are recorded when given, so the preset leaves them alone.
   auto read_managed = [&config](YamlSection& section, const char* key, auto& field) {

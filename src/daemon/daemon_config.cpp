@@ -49,6 +49,12 @@ void validate(const DaemonConfig& config) {
     throw ConfigError("streams: no streams configured and discovery.enabled is false");
 }
 
+TrackerConfig daemon_tracker_defaults() {
+  TrackerConfig config;
+  config.deskew.enabled = true;
+  return config;
+}
+
 StreamConfig discovered_stream(const DaemonConfig& config, const std::string& id,
                                const std::string& topic) {
   StreamConfig stream;

@@ -39,7 +39,12 @@ printf 'store: {path: a.db, colour: red}\n' > c3.yaml
 expect_fail 2 "store.colour: unknown key" "$aggregator" --check-config --config c3.yaml
 printf 'dds: [\n' > c4.yaml
 expect_fail 2 "c4.yaml: not valid YAML" "$aggregator" --config c4.yaml
-expect_fail 2 "give --map and/or --trajectories" "$aggregator" export --store x.db
+expect_fail 2 "^litamin2-aggregator: error: export: give --map and/or --trajectories" \
+  "$aggregator" export --store x.db
+# A map name that is neither .ply nor .pcd is refused (exit 2) before the store is opened.
+expect_fail 2 "^litamin2-aggregator: error: export: --map m.txt: unsupported map format" \
+  "$aggregator" export --store x.db --map m.txt
+[ ! -e m.txt ] && [ ! -e x.db ] || { echo "FAIL: export --map m.txt wrote a file"; exit 1; }
 
 echo "== corrupt stores are refused and left untouched"
 head -c 8192 /dev/urandom > random.db

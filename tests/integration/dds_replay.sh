@@ -115,29 +115,30 @@ finish_subscriber big
 check "large scans: all scans identical" 0 $SUB_RC
 rm -rf "$WORK/big1" "$WORK/big2"
 
-# 4. Nobody listening: bounded wait, exit 2 with a clear message.
+# 4. Nobody listening: bounded wait, exit 4 with a clear message.
 timeout 30 "$REPLAY" --stream car1 --domain "$DOMAIN" --timeout 1 "$WORK/a" \
   >"$WORK/nosub.log" 2>&1
-check "no subscribers: exit 2" 2 $?
+check "no subscribers: exit 4" 4 $?
 grep -q "0 of 1 reader(s) matched" "$WORK/nosub.log" || { echo "FAIL: no-subscriber message"; cat "$WORK/nosub.log"; FAIL=1; }
 
-# 5. Usage and input errors: exit 1 before any DDS traffic, --help exits 0.
+# 5. Usage errors exit 2 with one "litamin2-replay: error:" line, input errors 1, before any DDS
+#    traffic; --help exits 0.
 "$REPLAY" --help >/dev/null 2>&1
 check "--help" 0 $?
 "$REPLAY" --stream car1 --stream car2 "$WORK/a" >/dev/null 2>&1
-check "stream/folder count mismatch" 1 $?
+check "stream/folder count mismatch" 2 $?
 "$REPLAY" --stream 1car "$WORK/a" >"$WORK/badid.log" 2>&1
-check "invalid stream id" 1 $?
-grep -q "starts with a digit" "$WORK/badid.log" || { echo "FAIL: bad id message"; FAIL=1; }
+check "invalid stream id" 2 $?
+grep -q "^litamin2-replay: error: .*starts with a digit" "$WORK/badid.log" || { echo "FAIL: bad id message"; FAIL=1; }
 "$REPLAY" --stream car1 "$WORK/missing" >/dev/null 2>&1
 check "missing sequence" 1 $?
 "$REPLAY" --stream car1 --profile udp "$WORK/a" >/dev/null 2>&1
-check "unknown profile" 1 $?
+check "unknown profile" 2 $?
 "$REPLAY" --stream car1 --frames 9: "$WORK/a" >/dev/null 2>&1
-check "frames beyond the sequence" 1 $?
+check "frames beyond the sequence" 2 $?
 "$REPLAY" --stream car1 --rate 0 "$WORK/a" >/dev/null 2>&1
-check "rate 0" 1 $?
+check "rate 0" 2 $?
 "$REPLAY" --stream car1 --max --stagger "$WORK/a" >/dev/null 2>&1
-check "--stagger with --max" 1 $?
+check "--stagger with --max" 2 $?
 
 exit $FAIL

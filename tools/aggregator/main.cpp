@@ -2,8 +2,9 @@
 // (rt/litamin2/map_patches), keeps every keyframe in a durable SQLite store, finds loops within
 // and between streams, optimises the pose graph and publishes corrected keyframe poses, a map
 // summary and a status. Runs under systemd as Type=notify (READY, WATCHDOG, STOPPING, STATUS).
-// `litamin2-aggregator export` writes a store's map (PLY) and trajectories (KITTI, TUM).
+// `litamin2-aggregator export` writes a store's map (PLY or PCD) and trajectories (KITTI, TUM).
 
+#include "common/cli.hpp"
 #include "litamin2/aggregator/dds/aggregator_node.hpp"
 #include "litamin2/aggregator/map_export.hpp"
 #include "litamin2/config/aggregator_config_yaml.hpp"
@@ -18,7 +19,6 @@
 #include "litamin2/version.hpp"
 
 #include <spdlog/spdlog.h>
-#include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <iostream>
@@ -30,6 +30,7 @@ using namespace litamin2::aggregator;
 namespace {
 
 constexpr std::chrono::milliseconds kLoopPeriod(50);
+constexpr const char* kProg = "litamin2-aggregator";
 
 std::string describe(const AggregatorConfig& c) {
   return fmt::format("domain {}, profile {}, store {}, patches from {}", c.dds.domain,
@@ -66,8 +67,7 @@ int run_export(ExportOptions options, const std::string& config_file) {
       options.tiles = config.map_tiles.tiles;
     }
   } catch (const ConfigError& e) {
-    std::fprintf(stderr, "error: invalid configuration: %s\n", e.what());
-    return 2;
+    return tools::usage_error(kProg, std::string("invalid configuration: ") + e.what());
   }
   try {
     const ExportResult r = export_store(options);
@@ -77,11 +77,9 @@ int run_export(ExportOptions options, const std::string& config_file) {
                  store_path.c_str(), r.keyframes, r.streams, r.loops, r.voxels, r.tiles);
     for (const std::string& f : r.files) std::fprintf(stderr, "wrote %s\n", f.c_str());
   } catch (const store::StoreError& e) {
-    std::fprintf(stderr, "error: cannot read the store: %s\n", e.what());
-    return 1;
+    return tools::runtime_error(kProg, std::string("cannot read the store: ") + e.what());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 1;
+    return tools::runtime_error(kProg, e.what());
   }
   return 0;
 }
@@ -93,19 +91,20 @@ int main(int argc, char** argv) {
   service::ServiceSignals signals;
 
   CLI::App app{"litamin2-aggregator: keyframe store, loop closure and global map of every stream"};
+  tools::init_cli(app, kProg);
   std::string config_file = "/etc/litamin2/litamin2-aggregator.yaml";
   bool check_config = false;
-  bool show_version = false;
   app.add_option("-c,--config", config_file, "aggregator configuration (YAML)");
   app.add_flag("--check-config", check_config, "validate the configuration and exit");
-  app.add_flag("-V,--version", show_version, "print the version and exit");
 
   CLI::App* exporter = app.add_subcommand(
-      "export", "write the map (PLY) and trajectories (KITTI, TUM) of a store, read-only");
-  std::string store_path, map_ply, trajectories, export_config, box;
+      "export", "write the map (PLY or PCD) and trajectories (KITTI, TUM) of a store, read-only");
+  std::string store_path, map_file, trajectories, export_config, box;
   bool replay = false;
   exporter->add_option("--store", store_path, "the aggregator's store (SQLite)")->required();
-  exporter->add_option("--map", map_ply, "global map of distributions (.ply)");
+  exporter->add_option("--map", map_file,
+                       "global map of distributions: FILE.ply (binary PLY) or FILE.pcd (binary "
+                       "PCD)");
   exporter->add_option("--trajectories", trajectories,
                        "folder for <stream>_kitti.txt and <stream>_tum.txt");
   exporter->add_flag("--replay", replay,
@@ -117,31 +116,25 @@ int main(int argc, char** argv) {
   exporter->add_option("--box", box,
                        "only the map in MIN_X,MIN_Y,MAX_X,MAX_Y (map frame, metres): only the "
                        "tiles that meet it are read");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
-  if (show_version) {
-    std::cout << "litamin2-aggregator " << litamin2::version() << "\n";
-    return 0;
-  }
+  if (const auto status = tools::parse_cli(app, argc, argv)) return *status;
   if (exporter->parsed()) {
-    if (map_ply.empty() && trajectories.empty()) {
-      std::fprintf(stderr, "error: export: give --map and/or --trajectories\n");
-      return 2;
+    if (map_file.empty() && trajectories.empty()) {
+      return tools::usage_error(app.get_name(), "export: give --map and/or --trajectories");
     }
     ExportOptions options;
     options.store = store_path;
-    options.map_ply = map_ply;
+    if (!map_file.empty() && !map_format(map_file))
+      return tools::usage_error(app.get_name(), "export: --map " + map_file +
+                                                    ": unsupported map format (use a .ply or "
+                                                    ".pcd file name)");
+    options.map_file = map_file;
     options.trajectories_dir = trajectories;
     options.replay = replay;
     if (!box.empty()) {
       options.box = parse_box(box);
       if (!options.box) {
-        std::fprintf(stderr, "error: export: --box wants MIN_X,MIN_Y,MAX_X,MAX_Y, got '%s'\n",
-                     box.c_str());
-        return 2;
+        return tools::usage_error(app.get_name(),
+                                  "export: --box wants MIN_X,MIN_Y,MAX_X,MAX_Y, got '" + box + "'");
       }
     }
     return run_export(std::move(options), export_config);
@@ -151,17 +144,13 @@ int main(int argc, char** argv) {
   try {
     config = load_aggregator_config(config_file);
   } catch (const ConfigError& e) {
-    std::fprintf(stderr, "%serror: invalid configuration: %s\n", service::journal_prefix(3).c_str(),
-                 e.what());
-    return 2;
+    return tools::usage_error(app.get_name(), std::string("invalid configuration: ") + e.what());
   }
   // The security files' contents (certificates, signatures, expiry, grants), here too so that
   // --check-config reports them.
-  if (const auto why = litamin2::dds::security_files_error(config.security, config.dds.domain)) {
-    std::fprintf(stderr, "<3>error: invalid configuration: %s: %s\n", config_file.c_str(),
-                 why->c_str());
-    return 2;
-  }
+  if (const auto why = litamin2::dds::security_files_error(config.security, config.dds.domain))
+    return tools::usage_error(app.get_name(),
+                              "invalid configuration: " + config_file + ": " + *why);
   service::setup_logging(config.log_level);
   if (check_config) {
     std::cout << config_file << ": ok (" << describe(config) << ")\n";

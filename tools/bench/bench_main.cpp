@@ -4,6 +4,7 @@
 // sequence folder given with LITAMIN2_BENCH_SEQUENCE (e.g. a simulated one) for whole frames.
 // Usage: litamin2-bench [--benchmark_filter=REGEX] ; results and commands in docs/benchmarks.md.
 
+#include "common/cli.hpp"
 #include "litamin2/core/correspondence_search.hpp"
 #include "litamin2/core/scan_registration.hpp"
 #include "litamin2/core/tracker.hpp"
@@ -24,6 +25,8 @@ namespace {
 
 using namespace litamin2;
 
+constexpr const char* kProg = "litamin2-bench";
+
 struct Pair {
   PointCloud target, source;
 };
@@ -32,8 +35,7 @@ const Pair& real_pair() {
   static const Pair pair = [] {
     const std::string dir = LITAMIN2_SHARED_DATA_DIR "/kitti/seq00_frames_xyz/";
     if (!std::filesystem::exists(dir + "000000.bin")) {
-      std::cerr << "litamin2-bench: shared KITTI scans not found in " << dir << "\n";
-      std::exit(2);
+      std::exit(tools::runtime_error(kProg, "shared KITTI scans not found in " + dir));
     }
     return Pair{io::read_kitti_bin(dir + "000000.bin"), io::read_kitti_bin(dir + "000001.bin")};
   }();
@@ -239,6 +241,9 @@ const char* kHelp =
     "The stage benchmarks read the two real KITTI scans of ../shared/data.\n"
     "Commands, machine and results: docs/benchmarks.md.\n"
     "\n"
+    "  -V, --version            print the version and exit.\n"
+    "Exit status: 0 done, 1 the shared scans are missing, 2 usage error.\n"
+    "\n"
     "Google Benchmark's options follow (e.g. --benchmark_filter=REGEX, "
     "--benchmark_repetitions=N).\n\n";
 
@@ -254,7 +259,13 @@ int main(int argc, char** argv) {
     }
   }
   benchmark::Initialize(&argc, argv);  // prints its own usage and exits on --help
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+  // What Google Benchmark did not take (its own report would be one line per argument, named
+  // after argv[0]'s full path).
+  if (argc > 1) {
+    std::string rest;
+    for (int i = 1; i < argc; ++i) rest += (i > 1 ? " " : "") + std::string(argv[i]);
+    return tools::usage_error(kProg, "unrecognized option(s): " + rest);
+  }
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

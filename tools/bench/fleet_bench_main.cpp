@@ -8,6 +8,7 @@
 // (tests/integration/aggregator_bench.sh) covers the transport. Writes a JSON summary
 // (docs/benchmarks.md).
 
+#include "common/cli.hpp"
 #include "fleet_drive.hpp"
 #include "fleet_world.hpp"
 #include "litamin2/aggregator/aggregator_core.hpp"
@@ -18,7 +19,6 @@
 #include "litamin2/io/trajectory.hpp"
 
 #include <sys/resource.h>
-#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -117,6 +117,7 @@ struct CountingSink : AggregatorSink {
 
 int main(int argc, char** argv) {
   CLI::App app{"litamin2-fleet-bench: the aggregator's core fed a synthetic fleet in process"};
+  litamin2::tools::init_cli(app, "litamin2-fleet-bench");
   Options o;
   app.add_option("--vehicles", o.vehicles, "vehicles (streams)")->check(CLI::Range(1, 100000));
   app.add_option("--keyframes", o.keyframes, "keyframes in all")->check(CLI::Range(1, 100000000));
@@ -136,7 +137,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 10000000));
   app.add_option("--seed", o.seed, "world and fleet seed");
   app.add_flag("--keep-store", o.keep_store, "use an existing store instead of removing it");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto status = litamin2::tools::parse_cli(app, argc, argv)) return *status;
 
   if (!o.keep_store) {
     for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(o.store + suffix);
@@ -277,8 +278,8 @@ int main(int argc, char** argv) {
     worker.stop();
     const WorkerStatus ws = worker.status();
     if (!ws.error.empty()) {
-      std::fprintf(stderr, "error: the mapping thread failed: %s\n", ws.error.c_str());
-      return 1;
+      return litamin2::tools::runtime_error(app.get_name(),
+                                            "the mapping thread failed: " + ws.error);
     }
     full_passes = ws.full_passes;
     background_cpu_s = ws.full_pass_cpu_s;

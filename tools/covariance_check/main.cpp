@@ -7,13 +7,15 @@
 // standard-deviation factor that makes it so, sqrt(mean / 6), is the calibrated
 // pose_graph.tracker_covariance_scale. The distance model's sigmas are checked the same way.
 
+#include "common/cli.hpp"
+#include "common/frame_range.hpp"
 #include "litamin2/config/tracker_config_yaml.hpp"
+#include "litamin2/core/config_error.hpp"
 #include "litamin2/core/tracker.hpp"
 #include "litamin2/io/kitti_sequence.hpp"
 #include "litamin2/mapping/mapper_config.hpp"
 #include "litamin2/mapping/odometry_covariance.hpp"
 
-#include <CLI/CLI.hpp>
 #include <Eigen/Cholesky>
 
 #include <algorithm>
@@ -48,14 +50,17 @@ int main(int argc, char** argv) {
   CLI::App app{
       "Consistency of the tracker's relative-pose covariance with a sequence's ground "
       "truth; prints the calibrated pose_graph.tracker_covariance_scale"};
-  std::string input, config_file, mode;
-  std::size_t frames = 0;
+  litamin2::tools::init_cli(app, "litamin2-covariance-check");
+  std::string input, config_file, mode, frames;
   app.add_option("INPUT", input, "KITTI sequence folder with poses.txt and calib.txt")->required();
   app.add_option("-c,--config", config_file, "Tracker config YAML");
   app.add_option("--mode", mode, "icp or icp+cov (overrides the config)")
       ->check(CLI::IsMember({"icp", "icp+cov"}));
-  app.add_option("--frames", frames, "First N frames only (0 = all)");
-  CLI11_PARSE(app, argc, argv);
+  litamin2::tools::add_frames_option(app, frames, "frames");
+  if (const auto status = litamin2::tools::parse_cli(app, argc, argv)) return *status;
+  std::string frames_error;
+  const auto range = litamin2::tools::parse_frame_range(frames, &frames_error);
+  if (!range) return litamin2::tools::usage_error(app.get_name(), frames_error);
 
   try {
     TrackerConfig config = config_file.empty() ? TrackerConfig{} : load_tracker_config(config_file);
@@ -66,11 +71,16 @@ int main(int argc, char** argv) {
       throw std::runtime_error(input + ": needs poses.txt and calib.txt");
     const Eigen::Isometry3d tr = *sequence.velo_to_cam();
     const auto& gt = *sequence.ground_truth_cam();
-    const std::size_t n = frames > 0 ? std::min(frames, sequence.size()) : sequence.size();
+    const auto selected = range->within(sequence.size());
+    if (!selected)
+      return litamin2::tools::usage_error(
+          app.get_name(),
+          "--frames " + frames + " selects no frame of " + std::to_string(sequence.size()));
+    const auto [first, last] = *selected;
 
     Tracker tracker(config);
     std::vector<Sample> keyframes;
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = first; i < last; ++i) {
       const FrameResult f = tracker.process(sequence.load(i));
       if (f.keyframe) keyframes.push_back({f.pose, tr.inverse() * gt[i] * tr, f.covariance});
     }
@@ -103,7 +113,7 @@ int main(int argc, char** argv) {
     }
     if (tracker_nees.empty()) throw std::runtime_error("no pair of registered keyframes");
     const double m = static_cast<double>(tracker_nees.size());
-    std::printf("%zu keyframe pairs over %zu frames\n", tracker_nees.size(), n);
+    std::printf("%zu keyframe pairs over %zu frames\n", tracker_nees.size(), last - first);
     report("tracker", tracker_nees);
     report("distance", distance_nees);
     const Vector6d rms_e = (error_sq / m).cwiseSqrt(), rms_s = (tracker_var / m).cwiseSqrt();
@@ -113,9 +123,11 @@ int main(int argc, char** argv) {
     std::printf("RMS tracker sigma:  t %.4f %.4f %.4f m, r %.4f %.4f %.4f deg\n", rms_s(0),
                 rms_s(1), rms_s(2), rms_s(3) * 180 / M_PI, rms_s(4) * 180 / M_PI,
                 rms_s(5) * 180 / M_PI);
+  } catch (const ConfigError& e) {
+    return litamin2::tools::usage_error(app.get_name(),
+                                        std::string("invalid configuration: ") + e.what());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "litamin2-covariance-check: %s\n", e.what());
-    return 1;
+    return litamin2::tools::runtime_error(app.get_name(), e.what());
   }
   return 0;
 }

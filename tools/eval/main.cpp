@@ -1,7 +1,6 @@
 // litamin2-eval: compares an estimated trajectory with the ground truth (KITTI odometry metric,
 // ATE, RPE) and optionally plots both.
 
-#include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -10,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/cli.hpp"
 #include "litamin2/eval/ate.hpp"
 #include "litamin2/eval/kitti_metrics.hpp"
 #include "litamin2/eval/rpe.hpp"
@@ -21,7 +21,8 @@
 
 namespace {
 
-constexpr int kExitInputError = 2;
+namespace cli = litamin2::tools;
+constexpr const char* kProg = "litamin2-eval";
 
 struct Trajectory {
   std::vector<Eigen::Isometry3d> poses;
@@ -104,13 +105,15 @@ const char* kFooter =
     "x-z for KITTI camera-0 poses (x right, z forward), x-y for z-up poses. Below: the position\n"
     "error over time (TUM) or pose index (KITTI).\n"
     "\n"
-    "Exit codes: 0 success; 2 bad command line, missing/unreadable/malformed file, different pose\n"
-    "counts, empty file or plot that cannot be written.";
+    "Exit codes: 0 success; 1 missing/unreadable/malformed file, different pose counts, empty\n"
+    "file or plot that cannot be written; 2 bad command line (unknown option, bad value, --plot\n"
+    "format, --t-max-diff without --format tum).";
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{kDescription, "litamin2-eval"};
+  CLI::App app{kDescription, kProg};
+  cli::init_cli(app, kProg);
   app.footer(kFooter);
   std::string gt_path;
   std::string est_path;
@@ -138,23 +141,18 @@ int main(int argc, char** argv) {
   app.add_option("--t-max-diff", t_max_diff,
                  "Pair TUM poses by timestamp: largest difference in seconds (default: by line)")
       ->check(CLI::NonNegativeNumber);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : kExitInputError;
-  }
+  if (const auto status = cli::parse_cli(app, argc, argv)) return *status;
 
   if (!plot_path.empty() && litamin2::eval_tool::plot_format(plot_path).empty()) {
-    std::cerr << "litamin2-eval: error: --plot " << plot_path
-              << ": unsupported plot format (use a .png, .svg or .pdf file name)\n";
-    return kExitInputError;
+    return cli::usage_error(
+        kProg,
+        "--plot " + plot_path + ": unsupported plot format (use a .png, .svg or .pdf file name)");
   }
 
   const bool pair_by_time = t_max_diff >= 0.0;
   if (pair_by_time && format != "tum") {
-    std::cerr << "litamin2-eval: error: --t-max-diff needs --format tum (KITTI files hold no "
-                 "timestamps)\n";
-    return kExitInputError;
+    return cli::usage_error(kProg,
+                            "--t-max-diff needs --format tum (KITTI files hold no timestamps)");
   }
 
   Trajectory gt;
@@ -163,39 +161,39 @@ int main(int argc, char** argv) {
     gt = read_trajectory(gt_path, format);
   } catch (const litamin2::io::IoError& e) {  // what() starts with the path
     std::cerr << "litamin2-eval: error: cannot read ground truth: " << e.what() << '\n';
-    return kExitInputError;
+    return cli::kExitRuntimeError;
   } catch (const std::exception& e) {
     std::cerr << "litamin2-eval: error: cannot read ground truth " << gt_path << ": " << e.what()
               << '\n';
-    return kExitInputError;
+    return cli::kExitRuntimeError;
   }
   try {
     est = read_trajectory(est_path, format);
   } catch (const litamin2::io::IoError& e) {
     std::cerr << "litamin2-eval: error: cannot read estimate: " << e.what() << '\n';
-    return kExitInputError;
+    return cli::kExitRuntimeError;
   } catch (const std::exception& e) {
     std::cerr << "litamin2-eval: error: cannot read estimate " << est_path << ": " << e.what()
               << '\n';
-    return kExitInputError;
+    return cli::kExitRuntimeError;
   }
   if (gt.poses.empty()) {
     std::cerr << "litamin2-eval: error: ground truth " << gt_path << " holds no poses\n";
-    return kExitInputError;
+    return cli::kExitRuntimeError;
   }
   if (pair_by_time) {
     for (const auto& [trajectory, path] : {std::pair{&gt, gt_path}, std::pair{&est, est_path}}) {
       const std::string error = litamin2::eval::time_series_error(trajectory->times);
       if (!error.empty()) {
         std::cerr << "litamin2-eval: error: " << path << ": " << error << '\n';
-        return kExitInputError;
+        return cli::kExitRuntimeError;
       }
     }
     const auto pairs = litamin2::eval::associate_by_time(gt.times, est.times, t_max_diff);
     if (pairs.size() < 2) {
       std::cerr << "litamin2-eval: error: only " << pairs.size() << " of " << est.poses.size()
                 << " estimate poses are within " << t_max_diff << " s of a ground-truth pose\n";
-      return kExitInputError;
+      return cli::kExitRuntimeError;
     }
     Trajectory paired_gt;
     Trajectory paired_est;
@@ -216,7 +214,7 @@ int main(int argc, char** argv) {
     std::cerr << "litamin2-eval: error: pose counts differ: estimate " << est_path << " has "
               << est.poses.size() << " poses, ground truth " << gt_path << " has "
               << gt.poses.size() << '\n';
-    return kExitInputError;
+    return cli::kExitRuntimeError;
   }
   for (std::size_t i = 0; !pair_by_time && i < gt.times.size() && i < est.times.size(); ++i) {
     if (std::abs(gt.times[i] - est.times[i]) > 0.01) {
@@ -253,7 +251,7 @@ int main(int argc, char** argv) {
       litamin2::eval_tool::write_trajectory_plot(plot_path, make_plot(report, gt, est));
     } catch (const std::exception& e) {
       std::cerr << "litamin2-eval: error: cannot write plot: " << e.what() << '\n';
-      return kExitInputError;
+      return cli::kExitRuntimeError;
     }
     if (!json) std::cout << "\nplot written to " << plot_path << '\n';
   }

@@ -3,6 +3,7 @@
 // nav_msgs/Odometry on rt/<stream>/odom, map patches and a status (DiagnosticArray).
 // Runs under systemd as Type=notify (READY, WATCHDOG, STOPPING, STATUS).
 
+#include "common/cli.hpp"
 #include "litamin2/config/config_reload.hpp"
 #include "litamin2/config/daemon_config_yaml.hpp"
 #include "litamin2/core/config_error.hpp"
@@ -14,7 +15,6 @@
 #include "litamin2/version.hpp"
 
 #include <spdlog/spdlog.h>
-#include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <iostream>
@@ -47,37 +47,24 @@ int main(int argc, char** argv) {
   const std::string heap_policy = service::keep_large_buffers_in_heap();
 
   CLI::App app{"litamin2d: LiTAMIN2 LiDAR odometry for many sensor streams over DDS"};
+  tools::init_cli(app, "litamin2d");
   std::string config_file = "/etc/litamin2/litamin2d.yaml";
   bool check_config = false;
-  bool show_version = false;
   app.add_option("-c,--config", config_file, "daemon configuration (YAML)");
   app.add_flag("--check-config", check_config, "validate the configuration and exit");
-  app.add_flag("-V,--version", show_version, "print the version and exit");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
-  if (show_version) {
-    std::cout << "litamin2d " << litamin2::version() << "\n";
-    return 0;
-  }
+  if (const auto status = tools::parse_cli(app, argc, argv)) return *status;
 
   DaemonConfig config;
   try {
     config = load_daemon_config(config_file);
   } catch (const ConfigError& e) {
-    std::fprintf(stderr, "%serror: invalid configuration: %s\n", service::journal_prefix(3).c_str(),
-                 e.what());
-    return 2;
+    return tools::usage_error(app.get_name(), std::string("invalid configuration: ") + e.what());
   }
   // The security files' contents (certificates, signatures, expiry, grants), here too so that
   // --check-config reports them.
-  if (const auto why = litamin2::dds::security_files_error(config.security, config.dds.domain)) {
-    std::fprintf(stderr, "<3>error: invalid configuration: %s: %s\n", config_file.c_str(),
-                 why->c_str());
-    return 2;
-  }
+  if (const auto why = litamin2::dds::security_files_error(config.security, config.dds.domain))
+    return tools::usage_error(app.get_name(),
+                              "invalid configuration: " + config_file + ": " + *why);
   service::setup_logging(config.log_level);
   if (check_config) {
     std::cout << config_file << ": ok (" << describe(config) << ")\n";

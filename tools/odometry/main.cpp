@@ -1,5 +1,6 @@
 // litamin2-odometry: LiTAMIN2 odometry over a recorded sequence of scans.
 
+#include "common/cli.hpp"
 #include "common/frame_range.hpp"
 #include "common/progress.hpp"
 #include "litamin2/config/mapper_config_yaml.hpp"
@@ -267,8 +268,10 @@ int main(int argc, char** argv) {
       "pcd/ scans, as litamin2-sim --sweep-motion writes them, are then read instead of\n"
       "velodyne/). With --skip-bad-frames a scan that cannot be read is logged and skipped, its\n"
       "pose extrapolated with the previous motion, and the run goes on.\n"
-      "Exit status: 0 ok, 1 bad input (a corrupt scan without --skip-bad-frames), 3 some frames\n"
-      "could not be registered."};
+      "Exit status: 0 ok, 1 bad input (a corrupt scan without --skip-bad-frames), 2 usage error\n"
+      "(an option, --frames beyond the sequence, an invalid config file), 3 some frames could not\n"
+      "be registered."};
+  tools::init_cli(app, "litamin2-odometry");
   Options options;
   app.add_option("INPUT", options.input, "Sequence folder")->required();
   app.add_option("-o,--output", options.output, "Output folder (created)")->required();
@@ -286,7 +289,7 @@ int main(int argc, char** argv) {
   app.add_option(
       "--vertical-correction", options.vertical_correction_deg,
       "Rotate KITTI HDL-64 points up by this many degrees (KISS-ICP uses 0.205); off by default");
-  app.add_option("--frames", options.frames, "Range A:B of scans (B exclusive)");
+  tools::add_frames_option(app, options.frames, "scans");
   app.add_flag("-q,--quiet", options.quiet, "Print nothing on success");
   app.add_flag("--loop-closure", options.loop_closure,
                "Offline SLAM: close loops with the aggregator's mapping back end; poses_kitti.txt "
@@ -299,22 +302,14 @@ int main(int argc, char** argv) {
                "previous motion; stats.json lists the skipped files");
   app.add_option("--mapper-config", options.mapper_config_file,
                  "Mapping back-end config YAML (see config/mapper.yaml); with --loop-closure");
-  app.set_version_flag("--version", std::string(litamin2::version()));
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 1;  // CLI11 errors are bad input: exit 1, as documented
-  }
+  if (const auto status = tools::parse_cli(app, argc, argv)) return *status;
   try {
     return run(options);
-  } catch (const CLI::Error& e) {
-    std::cerr << "litamin2-odometry: " << e.what() << "\n";
-    return 1;
+  } catch (const CLI::Error& e) {  // an option that does not fit the input (--frames)
+    return tools::usage_error(app.get_name(), e.what());
   } catch (const ConfigError& e) {
-    std::cerr << "litamin2-odometry: config: " << e.what() << "\n";
-    return 1;
+    return tools::usage_error(app.get_name(), std::string("invalid configuration: ") + e.what());
   } catch (const std::exception& e) {
-    std::cerr << "litamin2-odometry: " << e.what() << "\n";
-    return 1;
+    return tools::runtime_error(app.get_name(), e.what());
   }
 }

@@ -15,6 +15,7 @@
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
+#include "common/cli.hpp"
 #include "litamin2/dds/participant_factory.hpp"
 #include "litamin2/dds/qos.hpp"
 #include "litamin2/dds/serialized_pointcloud2.hpp"
@@ -31,9 +32,10 @@ using litamin2::replay::StreamPublisher;
 
 namespace {
 
+// 2 is a usage error (common/cli.hpp), reported by parse_replay_options.
 constexpr int kExitError = 1;
-constexpr int kExitNoSubscribers = 2;
 constexpr int kExitIncomplete = 3;
+constexpr int kExitNoSubscribers = 4;
 constexpr int kExitInterrupted = 130;
 
 std::atomic<bool> g_stop{false};
@@ -67,14 +69,15 @@ int main(int argc, char** argv) {
     try {
       sequences.push_back(std::make_unique<litamin2::io::ScanSequence>(spec.folder));
     } catch (const std::exception& e) {
-      spdlog::error("stream {}: cannot open sequence '{}': {}", spec.id, spec.folder, e.what());
-      return kExitError;
+      return litamin2::tools::runtime_error(
+          "litamin2-replay",
+          fmt::format("stream {}: cannot open sequence '{}': {}", spec.id, spec.folder, e.what()));
     }
     const std::size_t n = sequences.back()->size();
     if (options.first_frame >= n) {
-      spdlog::error("stream {}: --frames starts at {} but '{}' has {} scans", spec.id,
-                    options.first_frame, spec.folder, n);
-      return kExitError;
+      return litamin2::tools::usage_error(
+          "litamin2-replay", fmt::format("stream {}: --frames starts at {} but '{}' has {} scans",
+                                         spec.id, options.first_frame, spec.folder, n));
     }
     ranges.emplace_back(options.first_frame, std::min(options.last_frame, n));
   }

@@ -2,9 +2,9 @@
 
 #include <spdlog/spdlog.h>
 
-#include <CLI/CLI.hpp>
 #include <cmath>
 
+#include "common/cli.hpp"
 #include "common/frame_range.hpp"
 #include "litamin2/service/topic_names.hpp"
 
@@ -25,9 +25,9 @@ int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& sh
       "the rate is kept). Before publishing, each writer waits for --wait-subscribers matched "
       "readers; after the last frame, reliable writers wait for acknowledgments. Every wait is "
       "bounded by --timeout.\n\n"
-      "Exit status: 0 all frames published (and acknowledged when reliable), 1 usage or input "
-      "error, 2 no subscribers within --timeout, 3 frames failed or not acknowledged, 130 "
-      "interrupted.",
+      "Exit status: 0 all frames published (and acknowledged when reliable), 1 input or DDS "
+      "error, 2 usage error, 3 frames failed or not acknowledged, 4 no subscribers within "
+      "--timeout, 130 interrupted.",
       "litamin2-replay"};
   std::vector<std::string> stream_ids;
   std::vector<std::string> folders;
@@ -64,7 +64,7 @@ int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& sh
   app.add_option("--pki", pki,
                  "DDS-Security: a folder made by scripts/litamin2-pki (with --identity)");
   app.add_option("--identity", identity, "DDS-Security: the identity in --pki to publish as");
-  app.add_option("--frames", frames, "Frames A:B of every sequence (B exclusive), A: or :B");
+  tools::add_frames_option(app, frames, "frames of every sequence");
   app.add_option("--wait-subscribers", options.wait_subscribers,
                  "Matched readers each stream waits for before publishing (default 1, 0 = none)")
       ->check(CLI::NonNegativeNumber);
@@ -81,15 +81,11 @@ int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& sh
       ->check(CLI::Range(1, 10000));
   app.add_option("SEQUENCE_DIR", folders, "Sequence folders, one per --stream")->required();
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 1;  // CLI11 errors are bad input: exit 1, as documented
-  }
+  tools::init_cli(app, "litamin2-replay");
+  if (const auto status = tools::parse_cli(app, argc, argv)) return *status;
 
-  const auto fail = [](const std::string& message) {
-    spdlog::error("{}", message);
-    return 1;
+  const auto fail = [&app](const std::string& message) {
+    return tools::usage_error(app.get_name(), message);
   };
   if (stream_ids.size() != folders.size()) {
     return fail("got " + std::to_string(stream_ids.size()) + " --stream id(s) for " +

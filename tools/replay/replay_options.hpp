@@ -48,7 +48,8 @@ struct ReplayOptions {
 };
 
 /// Parses the command line. Returns 0 and fills `options` to run, or the process exit code
-/// when it should stop (0 for --help, 1 for an error, already reported on stderr).
+/// when it should stop (0 for --help / --version, 2 for a usage error, already reported on
+/// stderr as "litamin2-replay: error: ...").
 int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& should_exit);
 
 }  // namespace litamin2::replay

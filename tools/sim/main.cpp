@@ -5,7 +5,6 @@
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -17,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cli.hpp"
 #include "common/frame_range.hpp"
 #include "litamin2/io/io_error.hpp"
 #include "litamin2/io/kitti_bin.hpp"
@@ -131,7 +131,9 @@ int main(int argc, char** argv) {
   CLI::App app{
       "Ray-casts synthetic LiDAR scans along a trajectory (KITTI ground truth or built-in) in a "
       "procedural world and writes KITTI odometry folders (velodyne/*.bin, poses.txt, calib.txt, "
-      "times.txt)."};
+      "times.txt).\n"
+      "Exit status: 0 written, 1 unreadable input or failed write, 2 usage error."};
+  litamin2::tools::init_cli(app, "litamin2-sim");
   std::string trajectory_path, builtin, calib_path, sequence_name, frames_spec,
       sensor = "hdl64", output, compare_real;
   std::uint64_t seed = 1;
@@ -150,8 +152,7 @@ int main(int argc, char** argv) {
                  "KITTI 00-02")
       ->check(CLI::ExistingPath);
   app.add_option("--sequence", sequence_name, "KITTI sequence number for a Tr table, e.g. 00");
-  app.add_option("--frames", frames_spec,
-                 "Frame range A:B of the trajectory (B exclusive; A: or :B allowed). Default: all");
+  litamin2::tools::add_frames_option(app, frames_spec, "trajectory's frames (default: all)");
   app.add_option("--sensor", sensor, "Sensor model")
       ->check(CLI::IsMember(sim::LidarModel::preset_names()));
   app.add_option("--seed", seed, "Seed of the world and the scan noise (default 1)");
@@ -230,7 +231,7 @@ int main(int argc, char** argv) {
                  "Mean depth a beam travels into foliage before returning, m")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--output,-o", output, "Output folder")->required();
-  CLI11_PARSE(app, argc, argv);
+  if (const auto status = litamin2::tools::parse_cli(app, argc, argv)) return *status;
 
   try {
     std::unique_ptr<tbb::global_control> control;
@@ -416,11 +417,9 @@ int main(int argc, char** argv) {
       }
     }
     return 0;
-  } catch (const io::IoError& e) {
-    spdlog::error("{}", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 1;
+  } catch (const std::invalid_argument& e) {  // an option's value (--frames, --districts, ...)
+    return litamin2::tools::usage_error(app.get_name(), e.what());
+  } catch (const std::exception& e) {  // io::IoError and the rest
+    return litamin2::tools::runtime_error(app.get_name(), e.what());
   }
 }

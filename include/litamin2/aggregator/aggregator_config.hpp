@@ -103,7 +103,8 @@ struct AggregatorConfig {
   MapTilesConfig map_tiles;
   /// The background full pass of the pose graph (full_pass_worker.hpp).
   FullPassConfig full_pass;
-  service::WatchdogConfig watchdog;
+  /// A batch may take longer than a frame: 60 s stall timeout (the shipped file's), not 10.
+  service::WatchdogConfig watchdog{true, 60.0};
   /// spdlog level: trace, debug, info, warn, error, critical, off.
   std::string log_level = "info";
 };

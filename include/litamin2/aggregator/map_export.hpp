@@ -7,11 +7,12 @@
 /// `replay`, rebuilt by loading every keyframe in canonical order into a new mapper (a state
 /// that depends only on the set of stored keyframes, O(N) registrations; its tiles made from
 /// all of them); then written:
-///  - the global map as a binary PLY, one vertex per distribution with float properties
+///  - the global map as a binary PLY (`.ply`) or binary PCD v0.7 (`.pcd`), chosen by the file
+///    name's extension, one vertex/point per distribution with float properties/fields
 ///    x y z (mean), c00 c01 c02 c11 c12 c22 (covariance), nx ny nz (unit normal: the
-///    covariance's least eigenvector, nz >= 0) and count: the tiles' distributions, tile by
-///    tile (by tile key, then voxel key), only those whose mean lies in the bounding box if
-///    one is given (only the tiles that meet it are read);
+///    covariance's least eigenvector, nz >= 0) and count (PCD: U 4): the tiles' distributions, tile
+///    by tile (by tile key, then voxel key), only those whose mean lies in the bounding box if one
+///    is given (only the tiles that meet it are read);
 ///  - per stream `<stream>_kitti.txt` (KITTI, 12 numbers per line) and `<stream>_tum.txt`
 ///    (TUM, stamp in seconds) of the corrected keyframe poses, by keyframe id, in the frame of
 ///    the stream's anchor (the map frame for streams joined to the map); '/' in a stream id
@@ -27,10 +28,16 @@
 
 namespace litamin2::aggregator {
 
+/// The map file's format, by its name's extension (case-insensitive).
+enum class MapFormat { kPly, kPcd };
+
+/// .ply or .pcd; std::nullopt for any other extension (which export_store refuses).
+std::optional<MapFormat> map_format(const std::string& path);
+
 struct ExportOptions {
   std::string store;
-  /// Empty: no map file.
-  std::string map_ply;
+  /// Empty: no map file; otherwise a .ply or .pcd (map_format).
+  std::string map_file;
   /// Empty: no trajectories.
   std::string trajectories_dir;
   mapping::MapperConfig mapper;
@@ -57,11 +64,14 @@ struct ExportResult {
 };
 
 /// Throws store::StoreError (naming the file) if the store cannot be read, io::IoError if an
-/// output cannot be written.
+/// output cannot be written, std::invalid_argument (before opening the store) if map_file has
+/// neither a .ply nor a .pcd extension.
 ExportResult export_store(const ExportOptions& options);
 
 /// The PLY described above.
 void write_map_ply(const std::string& path, const std::vector<Distribution>& map);
+/// The same columns as a binary PCD (x y z as the points, the rest as extra fields).
+void write_map_pcd(const std::string& path, const std::vector<Distribution>& map);
 /// The map's distributions in the box (every one without), tile by tile; `tiles_read` counts
 /// the tiles read.
 std::vector<Distribution> map_in_box(mapping::TileMap& tiles,

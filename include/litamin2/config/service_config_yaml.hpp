@@ -21,8 +21,10 @@ TransportConfig transport_config_from_yaml(const YAML::Node& node);
 /// When enabled, each of the six files must be given and readable (security_config_error).
 SecurityConfig security_config_from_yaml(const YAML::Node& node);
 
-/// Reads a `watchdog:` section; stall_timeout_s must lie in [0.1, max_stall_timeout_s].
-WatchdogConfig watchdog_config_from_yaml(const YAML::Node& node, double max_stall_timeout_s);
+/// Reads a `watchdog:` section over `defaults` (the process's own); stall_timeout_s must lie in
+/// [0.1, max_stall_timeout_s].
+WatchdogConfig watchdog_config_from_yaml(const YAML::Node& node, double max_stall_timeout_s,
+                                         const WatchdogConfig& defaults);
 
 /// Reads the `log_level` key of `section` into `level` (one of kLogLevels).
 void read_log_level(config::YamlSection& section, std::string& level);

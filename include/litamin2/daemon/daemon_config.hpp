@@ -26,9 +26,15 @@ struct StreamConfig {
   TrackerConfig tracker;
 };
 
+/// The daemon's tracker defaults: TrackerConfig's, with deskew on (live drivers publish per-point
+/// times; a scan without them is registered as it is and counted), as in the shipped
+/// litamin2d.yaml.
+TrackerConfig daemon_tracker_defaults();
+
 /// Streams started for every input topic that DDS discovery reports and that matches.
 struct DiscoveryConfig {
-  bool enabled = false;
+  /// On by default, as in the shipped litamin2d.yaml: a config that gives only `dds:` runs.
+  bool enabled = true;
   /// Glob over topic names with exactly one '*', which becomes the stream id
   /// ("rt/*/points": topic rt/car1/points -> stream car1).
   std::string pattern = "rt/*/points";
@@ -66,8 +72,9 @@ struct DaemonConfig {
   /// Statically configured streams.
   std::vector<StreamConfig> streams;
   DiscoveryConfig discovery;
-  /// The global tracker section (streams and discovered streams start from it).
-  TrackerConfig tracker;
+  /// The global tracker section (streams and discovered streams start from it); absent keys
+  /// from daemon_tracker_defaults().
+  TrackerConfig tracker = daemon_tracker_defaults();
   /// Worker threads of the processing arena; 0 = one per core.
   int threads = 0;
   /// Frames queued per stream before the oldest is dropped.
