@@ -23,6 +23,9 @@ namespace {
 MapperConfig street_config() {
   MapperConfig config;
   config.place.min_travel_gap = 20.0;
+  // b joins a's group at their first loop (the tiles' test of a group joining the map; the
+  // merge confirmation is mapping_merge_confirmation_test's and TwoVehicles').
+  config.place.merge_confirmations = 1;
   return config;
 }
 
