@@ -26,6 +26,11 @@ MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
   place.read_enum<PlaceSearch>(
       "search", p.search, {{"indexed", PlaceSearch::kIndexed}, {"linear", PlaceSearch::kLinear}});
   place.read_range("search_spacing", p.search_spacing, 0.0, 1e4);
+  place.read_range("merge_confirmations", p.merge_confirmations, 1, 100);
+  place.read_range("merge_min_separation", p.merge_min_separation, 0.0, 1e5);
+  place.read_range("merge_agreement_m", p.merge_agreement_m, 1e-3, 1e4);
+  place.read_range("merge_agreement_per_m", p.merge_agreement_per_m, 0.0, 1.0);
+  place.read_range("merge_agreement_deg", p.merge_agreement_deg, 1e-3, 180.0);
   place.reject_unknown();
 
   YamlSection verification(root.child("verification"), "verification");
@@ -91,6 +96,11 @@ std::string mapper_config_to_yaml(const MapperConfig& c) {
   out << YAML::Key << "search" << YAML::Value
       << (c.place.search == PlaceSearch::kLinear ? "linear" : "indexed");
   out << YAML::Key << "search_spacing" << YAML::Value << c.place.search_spacing;
+  out << YAML::Key << "merge_confirmations" << YAML::Value << c.place.merge_confirmations;
+  out << YAML::Key << "merge_min_separation" << YAML::Value << c.place.merge_min_separation;
+  out << YAML::Key << "merge_agreement_m" << YAML::Value << c.place.merge_agreement_m;
+  out << YAML::Key << "merge_agreement_per_m" << YAML::Value << c.place.merge_agreement_per_m;
+  out << YAML::Key << "merge_agreement_deg" << YAML::Value << c.place.merge_agreement_deg;
   out << YAML::EndMap;
   out << YAML::Key << "verification" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "submap_neighbours" << YAML::Value << c.verification.submap_neighbours;

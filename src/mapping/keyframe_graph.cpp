@@ -1,5 +1,7 @@
 #include "litamin2/mapping/keyframe_graph.hpp"
 
+#include "litamin2/core/so3.hpp"
+
 #include <algorithm>
 #include <iterator>
 
@@ -42,7 +44,7 @@ void KeyframeGraph::update_path_lengths(std::uint32_t stream, std::uint64_t from
 }
 
 void KeyframeGraph::set_pose(std::uint32_t node, const Eigen::Isometry3d& pose) {
-  nodes_[node].pose = pose;
+  nodes_[node].pose = orthonormalized(pose);
   grid_.move(node, pose.translation());
   if (!changed_[node]) {
     changed_[node] = true;

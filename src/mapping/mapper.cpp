@@ -4,6 +4,7 @@
 #include "litamin2/core/voxel_map.hpp"
 #include "litamin2/mapping/distribution_moments.hpp"
 #include "litamin2/mapping/loop_detector.hpp"
+#include "litamin2/mapping/merge_confirmation.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -19,13 +20,15 @@ struct Mapper::Impl {
         cache(distribution_cache ? std::move(distribution_cache)
                                  : std::make_unique<DistributionCache>()),
         detector(config),
-        optimizer(config) {}
+        optimizer(config),
+        merges(config.place) {}
 
   MapperConfig config;
   KeyframeGraph graph;
   std::unique_ptr<DistributionCache> cache;
   LoopDetector detector;
   GraphOptimizer optimizer;
+  MergeConfirmation merges;
   GraphLoops loops;
   MapperStats stats;
   MapperCpu cpu;
@@ -46,6 +49,31 @@ struct Mapper::Impl {
     if (!neighbour && next != chain.end()) neighbour = &graph.node(next->second);
     if (!neighbour) return kf.odom_pose;
     return neighbour->pose * neighbour->odom_pose.inverse() * kf.odom_pose;
+  }
+
+  /// Adds a verified loop; one between two groups goes through the merge confirmation
+  /// first. Appends the loops added to `added` (none while a merge waits to be confirmed).
+  void offer_loop(const LoopEdge& edge, std::vector<LoopEdge>* added) {
+    const auto from = static_cast<std::uint32_t>(graph.find(edge.from));
+    const auto to = static_cast<std::uint32_t>(graph.find(edge.to));
+    const StreamGroups& groups = graph.groups();
+    if (groups.anchor_of(graph.node(from).stream) == groups.anchor_of(graph.node(to).stream)) {
+      add_loop(edge);
+      if (added) added->push_back(edge);
+      return;
+    }
+    const std::vector<MergeCandidate> confirmed = merges.offer({edge, from, to}, graph);
+    if (confirmed.empty()) {
+      ++stats.merges_pending;
+      return;
+    }
+    ++stats.merges;
+    // The earlier loops join the groups (the first one moves the later group), the newest
+    // is then a loop inside the group.
+    for (const MergeCandidate& c : confirmed) {
+      add_loop(c.edge);
+      if (added) added->push_back(c.edge);
+    }
   }
 
   void add_loop(const LoopEdge& edge) {
@@ -121,8 +149,7 @@ AddStatus Mapper::add_keyframe(Keyframe keyframe, std::vector<LoopEdge>* new_loo
   if (m.search_due(stored.stream, stored.path_length)) {
     if (const auto loop =
             m.detector.detect(index, keyframe.distributions, m.graph, *m.cache, m.stats, m.cpu)) {
-      m.add_loop(*loop);
-      if (new_loops) new_loops->push_back(*loop);
+      m.offer_loop(*loop, new_loops);
     }
   }
   m.cache->put(keyframe.key, std::move(keyframe.distributions));
@@ -179,6 +206,7 @@ FullPassProblem Mapper::full_pass_problem() const {
 void Mapper::apply_full_pass(const FullPassProblem& problem) {
   GraphOptimizer::apply_full_pass(problem, impl_->graph);
   if (problem.result.usable) ++impl_->stats.full_passes;
+  if (problem.result.diverged) ++impl_->stats.diverged;
 }
 
 std::size_t Mapper::loops_since_full_pass() const {

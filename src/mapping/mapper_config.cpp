@@ -15,6 +15,14 @@ void validate(const MapperConfig& c) {
           "verification.min_fitness must be in [0, 1]");
   require(c.map_voxel_size > 0.0, "map_voxel_size must be positive");
   require(c.place.search_spacing >= 0.0, "place_recognition.search_spacing must be >= 0");
+  require(c.place.merge_confirmations >= 1, "place_recognition.merge_confirmations must be >= 1");
+  require(c.place.merge_min_separation >= 0.0,
+          "place_recognition.merge_min_separation must be >= 0");
+  require(c.place.merge_agreement_m > 0.0, "place_recognition.merge_agreement_m must be positive");
+  require(c.place.merge_agreement_per_m >= 0.0,
+          "place_recognition.merge_agreement_per_m must be >= 0");
+  require(c.place.merge_agreement_deg > 0.0 && c.place.merge_agreement_deg <= 180.0,
+          "place_recognition.merge_agreement_deg must be in (0, 180]");
   require(c.graph.local_max_keyframes >= 1, "pose_graph.local_max_keyframes must be >= 1");
   require(c.graph.local_hops >= 0, "pose_graph.local_hops must be >= 0");
   require(c.graph.segment_keyframes >= 1, "pose_graph.segment_keyframes must be >= 1");

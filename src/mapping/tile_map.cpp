@@ -28,6 +28,8 @@ TileMap::TileMap(const TileMapConfig& config, double voxel_size, Loader loader,
                  std::size_t max_bytes)
     : config_((validate(config), config)), loader_(std::move(loader)), max_bytes_(max_bytes) {
   if (!(voxel_size > 0.0)) throw ConfigError("map voxel size must be positive");
+  if (!(config.move_threshold_m < voxel_size))
+    throw ConfigError("move_threshold_m must be below the map's voxel size");
   geometry_.tile_size = config.tile_size;
   geometry_.voxels.voxel_size = voxel_size;
   cos_threshold_ = std::cos(config.move_threshold_deg * M_PI / 180.0);

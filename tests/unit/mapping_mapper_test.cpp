@@ -22,6 +22,9 @@ namespace {
 MapperConfig street_config() {
   MapperConfig config;
   config.place.min_travel_gap = 20.0;  // the street is 60 m long
+  // Two vehicles' frames merge at two agreeing loops this far apart: the vehicles of
+  // TwoVehicles find each other over the first 18 m of the street only.
+  config.place.merge_min_separation = 10.0;
   return config;
 }
 
@@ -111,6 +114,9 @@ class TwoVehicles : public ::testing::Test {
   void expect_both_in_a_frame(const Mapper& mapper) {
     ASSERT_FALSE(mapper.loops().empty());
     EXPECT_EQ(mapper.map_anchor(), "a");
+    // Joined once, by two agreeing loops (merge_confirmation.hpp); the first waited.
+    EXPECT_EQ(mapper.stats().merges, 1u);
+    EXPECT_GE(mapper.stats().merges_pending, 1u);
     const auto pose_b = mapper.pose({"b", 10});
     ASSERT_TRUE(pose_b);
     EXPECT_EQ(pose_b->frame, "a") << "b's keyframes are not in a's frame";

@@ -4,6 +4,7 @@
 // full rebuild (every keyframe fused once, at the pose the incremental map holds it at) to
 // rounding; with a zero move threshold the tiles hold the global map's distributions.
 
+#include "litamin2/core/config_error.hpp"
 #include "litamin2/core/voxel_key.hpp"
 #include "litamin2/mapping/mapper.hpp"
 #include "litamin2/mapping/tile_map.hpp"
@@ -23,6 +24,9 @@ namespace {
 MapperConfig street_config() {
   MapperConfig config;
   config.place.min_travel_gap = 20.0;
+  // b joins a's group at their first loop (the tiles' test of a group joining the map; the
+  // merge confirmation is mapping_merge_confirmation_test's and TwoVehicles').
+  config.place.merge_confirmations = 1;
   return config;
 }
 
@@ -116,6 +120,10 @@ TEST(MappingTileMap, IncrementalUpdatesEqualAFullRebuild) {
   Mapper mapper(street_config());
   TileMapConfig config;
   config.tile_size = 20.0;  // the street spans several tiles
+  // Thresholds below the loops' corrections of this short drive, so that many keyframes are
+  // moved in the map (subtracted and added again), not only added.
+  config.move_threshold_m = 0.05;
+  config.move_threshold_deg = 0.05;
   TileMap map(config, mapper.config().map_voxel_size);
   run(mapper, map, 2);
   ASSERT_GT(mapper.loops().size(), 5u);
@@ -192,4 +200,40 @@ TEST(MappingTileMap, WithoutMoveThresholdTilesHoldTheGlobalMap) {
   }
   EXPECT_EQ(tiled, global.size());
   EXPECT_GT(tiled, 100u);
+}
+
+TEST(MappingTileMap, KeyframesStayFusedWithinTheMoveThresholdOfTheirPoses) {
+  // The default thresholds (0.3 m, 0.3 degrees): moves below them leave a keyframe fused
+  // where it was, so the map differs from one fused at the current poses by at most that;
+  // every keyframe in the map is within it after the updates, and the loops' corrections
+  // (larger) were fused.
+  Mapper mapper(street_config());
+  TileMapConfig config;
+  config.tile_size = 20.0;
+  TileMap map(config, mapper.config().map_voxel_size);
+  run(mapper, map, 2);
+  ASSERT_EQ(map.pending(), 0u);
+  std::size_t in_map = 0;
+  for (std::uint32_t n = 0; n < mapper.graph().size(); ++n) {
+    const auto fused = map.fused_pose(n);
+    if (!fused) continue;
+    ++in_map;
+    const Eigen::Isometry3d& pose = mapper.graph().node(n).pose;
+    EXPECT_LE((fused->translation() - pose.translation()).norm(), config.move_threshold_m);
+    EXPECT_LE(Eigen::AngleAxisd(fused->linear().transpose() * pose.linear()).angle(),
+              config.move_threshold_deg * M_PI / 180.0 + 1e-12);
+  }
+  EXPECT_EQ(in_map, mapper.graph().size());
+  EXPECT_GT(map.stats().subtracted, 0u);
+  expect_equals_full_rebuild(mapper, map);
+}
+
+TEST(MappingTileMap, AMoveThresholdOfAVoxelOrMoreIsRejected) {
+  TileMapConfig config;
+  config.move_threshold_m = 3.0;
+  EXPECT_THROW(TileMap(config, 3.0), ConfigError);
+  config.move_threshold_m = 2.9;
+  EXPECT_NO_THROW(TileMap(config, 3.0));
+  config.move_threshold_deg = -1.0;
+  EXPECT_THROW(TileMap(config, 3.0), ConfigError);
 }

@@ -50,6 +50,7 @@ struct Options {
   double spacing = 2.0;
   double search_spacing = 10.0;
   int segment_keyframes = 10;
+  int merge_confirmations = 2;
   std::size_t cache_mb = 512;
   double full_pass_duty = 0.25;
   int poses_chunk = 0;
@@ -130,6 +131,9 @@ int main(int argc, char** argv) {
   app.add_option("--spacing", o.spacing, "metres between keyframes");
   app.add_option("--search-spacing", o.search_spacing, "place_recognition.search_spacing, metres");
   app.add_option("--segment-keyframes", o.segment_keyframes, "pose_graph.segment_keyframes");
+  app.add_option("--merge-confirmations", o.merge_confirmations,
+                 "place_recognition.merge_confirmations (1: two groups join at their first loop)")
+      ->check(CLI::Range(1, 100));
   app.add_option("--cache-mb", o.cache_mb, "distribution cache, MB");
   app.add_option("--full-pass-duty", o.full_pass_duty, "full pass's share of a core (0 = none)");
   app.add_option("--poses-chunk", o.poses_chunk,
@@ -153,6 +157,7 @@ int main(int argc, char** argv) {
   mapping::MapperConfig mapper;
   mapper.place.search_spacing = o.search_spacing;
   mapper.graph.segment_keyframes = o.segment_keyframes;
+  mapper.place.merge_confirmations = o.merge_confirmations;
   mapper.graph.odometry_covariance = mapping::OdometryCovariance::kDistance;
   CoreOptions core_options;
   core_options.distribution_cache_bytes = o.cache_mb << 20;
@@ -211,7 +216,7 @@ int main(int argc, char** argv) {
   std::vector<double> loop_latency_ms;
   double background_cpu_s = 0.0;
   CountingSink sink;
-  std::size_t tiles = 0, map_pending = 0;
+  std::size_t tiles = 0, map_pending = 0, diverged = 0;
   const auto wall_start = Clock::now();
   {
     AggregatorCore core(o.store, store::OpenMode::kCreateIfMissing, mapper, {}, {}, core_options);
@@ -287,6 +292,7 @@ int main(int argc, char** argv) {
     map_pending = core.map_pending();
     loops = core.mapper().loops().size();
     live_poses = core.mapper().poses();
+    diverged = core.mapper().stats().diverged;
   }
   const double wall_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
   const double rss_run = peak_rss_mb();
@@ -318,6 +324,44 @@ int main(int argc, char** argv) {
     merged.insert(p.key.stream);
   }
   const double ate = in_map ? std::sqrt(sum_sq / in_map) : 0.0;
+
+  // Loops against the ground truth: a loop is wrong when its relative pose is more than
+  // 1 m or 2 degrees from the true one. The loops that joined two groups of streams (in the
+  // order the store recovers them, as Mapper::restore joins them) are counted apart.
+  std::size_t wrong_loops = 0, merges = 0, wrong_merges = 0;
+  double worst_loop_m = 0.0;
+  {
+    std::map<std::string, std::string> parent;
+    auto root = [&](std::string s) {
+      while (parent.count(s) && parent[s] != s) s = parent[s];
+      return s;
+    };
+    for (const mapping::LoopEdge& e : m.loops()) {
+      const Eigen::Isometry3d truth_rel = truth.at(e.from).inverse() * truth.at(e.to);
+      const Eigen::Isometry3d error = e.relative.inverse() * truth_rel;
+      const double t_err = error.translation().norm();
+      const double r_err = Eigen::AngleAxisd(error.rotation()).angle() * 180.0 / M_PI;
+      const bool wrong = t_err > 1.0 || r_err > 2.0;
+      worst_loop_m = std::max(worst_loop_m, t_err);
+      wrong_loops += wrong;
+      if (wrong) {
+        const Eigen::Vector3d a = truth.at(e.from).translation(), b = truth.at(e.to).translation();
+        std::fprintf(stderr,
+                     "wrong loop %s/%llu -> %s/%llu: error %.2f m %.2f deg, true places "
+                     "(%.1f %.1f) and (%.1f %.1f), fitness %.3f rmse %.3f\n",
+                     e.from.stream.c_str(), static_cast<unsigned long long>(e.from.id),
+                     e.to.stream.c_str(), static_cast<unsigned long long>(e.to.id), t_err, r_err,
+                     a.x(), a.y(), b.x(), b.y(), e.fitness, e.rmse);
+      }
+      const std::string a = root(e.from.stream), b = root(e.to.stream);
+      if (a != b) {
+        ++merges;
+        wrong_merges += wrong;
+        parent[a] = a;
+        parent[b] = a;
+      }
+    }
+  }
 
   if (!o.trajectories.empty()) {
     std::filesystem::create_directories(o.trajectories);
@@ -356,7 +400,10 @@ int main(int argc, char** argv) {
     << ",\n  \"peak_rss_mb_after_restart\": " << peak_rss_mb()
     << ",\n  \"store_mb\": " << file_mb(o.store) << ",\n  \"restart_s\": " << restart_s
     << ",\n  \"restart_identical\": " << (restart_identical ? "true" : "false")
-    << ",\n  \"ate_m\": " << ate << ",\n  \"keyframes_in_map_frame\": " << in_map
+    << ",\n  \"wrong_loops\": " << wrong_loops << ",\n  \"worst_loop_error_m\": " << worst_loop_m
+    << ",\n  \"group_merges\": " << merges << ",\n  \"wrong_group_merges\": " << wrong_merges
+    << ",\n  \"diverged_solves\": " << diverged << ",\n  \"ate_m\": " << ate
+    << ",\n  \"keyframes_in_map_frame\": " << in_map
     << ",\n  \"vehicles_in_map_frame\": " << merged.size() << ",\n  \"tiles\": " << tiles
     << ",\n  \"keyframes_not_fused_at_stop\": " << map_pending
     << ",\n  \"published\": {\"pose_messages\": " << sink.pose_messages

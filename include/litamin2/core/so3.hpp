@@ -45,6 +45,16 @@ inline Eigen::Isometry3d apply_left_update(const Vector6d& xi, const Eigen::Isom
   return updated;
 }
 
+/// The pose with its rotation projected back onto SO(3) (through the nearest unit
+/// quaternion): products of poses drift off orthonormal by rounding, and a correction made
+/// from a pose and applied to it doubles that drift (T' = S T^-1 T with T^-1 taken as R^T),
+/// so a pose corrected again and again must be re-orthonormalised.
+inline Eigen::Isometry3d orthonormalized(const Eigen::Isometry3d& pose) {
+  Eigen::Isometry3d out = pose;
+  out.linear() = Eigen::Quaterniond(pose.linear()).normalized().toRotationMatrix();
+  return out;
+}
+
 /// The adjoint of E = (R, t) in the left-update coordinates xi = (phi, tau):
 /// E exp(xi) T E^-1 = exp(Ad_E xi) (E T E^-1), with Ad_E = [[R, 0], [[t]x R, R]].
 inline Matrix6d adjoint(const Eigen::Isometry3d& pose) {

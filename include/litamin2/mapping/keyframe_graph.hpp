@@ -49,7 +49,9 @@ class KeyframeGraph {
   /// index. The node's pose is set by the caller beforehand.
   std::uint32_t add(KeyframeNode node);
 
-  /// Moves a node (updates the spatial grid and marks it changed).
+  /// Moves a node (updates the spatial grid and marks it changed). The rotation is
+  /// re-orthonormalised (core/so3.hpp orthonormalized): the full pass and the merges correct
+  /// poses by products of poses, whose rounding would otherwise grow without bound.
   void set_pose(std::uint32_t node, const Eigen::Isometry3d& pose);
 
   const KeyframeNode& node(std::uint32_t i) const { return nodes_[i]; }

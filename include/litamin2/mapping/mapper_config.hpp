@@ -41,6 +41,19 @@ struct PlaceRecognitionConfig {
   /// streets finds a candidate at nearly every keyframe; verifying each costs ~10 ms, so a
   /// fleet-scale aggregator samples them, as Cartographer's constraint builder does.
   double search_spacing = 0.0;
+  /// A loop between two groups of streams joins them only once this many verified loops
+  /// between the same two groups agree on the transform between their frames (1 = the first
+  /// loop joins them; merge_confirmation.hpp) ...
+  int merge_confirmations = 2;
+  /// ... found at places at least this far apart (so that one look-alike place cannot
+  /// confirm itself), metres ...
+  double merge_min_separation = 50.0;
+  /// ... agreeing to within this, metres, plus merge_agreement_per_m per metre of their
+  /// separation (the odometry's drift between them) ...
+  double merge_agreement_m = 2.0;
+  double merge_agreement_per_m = 0.02;
+  /// ... and this, degrees.
+  double merge_agreement_deg = 3.0;
 };
 
 /// Verification of a candidate by LiTAMIN2 registration of the two keyframes' patches

@@ -15,10 +15,15 @@ struct MapperStats {
   std::size_t rejected = 0;
   /// Of those, verified loops the graph could not accommodate.
   std::size_t inconsistent = 0;
+  /// Verified loops between two groups kept waiting for a confirmation
+  /// (merge_confirmation.hpp), and merges confirmed (groups joined).
+  std::size_t merges_pending = 0;
+  std::size_t merges = 0;
   std::size_t optimizations = 0;
   /// Full passes applied (Mapper::apply_full_pass).
   std::size_t full_passes = 0;
-  /// Local optimisations whose solution ran off (pose_graph.hpp, within_reach): refused.
+  /// Local optimisations and full passes whose solution ran off (pose_graph.hpp,
+  /// within_reach): refused.
   std::size_t diverged = 0;
 };
 

@@ -39,10 +39,12 @@ struct TileMapConfig {
   /// Edge of a square tile, metres.
   double tile_size = 100.0;
   /// A keyframe fused in the map is moved there once its pose is this far from the pose it
-  /// was fused at, metres ...
-  double move_threshold_m = 0.05;
-  /// ... or turned by this much, degrees.
-  double move_threshold_deg = 0.05;
+  /// was fused at, metres (below the map's voxel edge; a tenth of the default 3 m voxel:
+  /// a full pass that shifts the map by centimetres then re-fuses nothing, while the map's
+  /// means stay within this of a full rebuild at the current poses) ...
+  double move_threshold_m = 0.3;
+  /// ... or turned by this much, degrees (0.3: 0.2 m at the 40 m the patches reach).
+  double move_threshold_deg = 0.3;
 };
 
 /// Throws ConfigError on the first invalid value.
