@@ -38,6 +38,10 @@ void validate(const AggregatorConfig& config) {
     if (t.odometry == t.map_odometry)
       throw ConfigError("topics: odometry and map_odometry must be different");
   }
+  if (!t.tf.empty()) {
+    check_topic(t.tf, "topics.tf");
+    if (distinct.count(t.tf)) throw ConfigError("topics.tf: '" + t.tf + "' is another topic's");
+  }
   if (config.store.path.empty()) throw ConfigError("store.path: must not be empty");
   try {
     mapping::validate(config.mapper);

@@ -32,6 +32,9 @@ struct TopicsConfig {
   /// Output: each stream's current pose in the map frame (nav_msgs/Odometry, frame_id "map",
   /// child_frame_id as in its odometry), a pattern like `odometry`.
   std::string map_odometry = "rt/*/map_odom";
+  /// Output: each stream's map -> odom transform (tf2_msgs/TFMessage, parent "map", child the
+  /// odometry's frame_id) with each map-frame pose. Empty: none.
+  std::string tf = "rt/tf";
 };
 
 struct StoreConfig {

@@ -6,11 +6,13 @@
 #include "litamin2/dds/participant_setup.hpp"
 #include "litamin2/dds/qos.hpp"
 #include "litamin2/dds/time_conversion.hpp"
+#include "litamin2/dds/transform_conversion.hpp"
 #include "litamin2/msg/KeyframePosesPubSubTypes.h"
 #include "litamin2/msg/MapPatchPubSubTypes.h"
 #include "litamin2/msg/MapSummaryPubSubTypes.h"
 #include "litamin2/service/topic_names.hpp"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
+#include "tf2_msgs/msg/TFMessagePubSubTypes.h"
 
 #include <spdlog/spdlog.h>
 #include <fastdds/dds/publisher/DataWriter.hpp>
@@ -136,6 +138,12 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
                                                  dds::status_writer_qos());
   if (!poses_writer || !summary_writer || !status_writer_)
     throw std::runtime_error("cannot create output writers");
+  if (!config_.topics.tf.empty() && !config_.topics.odometry.empty()) {
+    tf_type_ = dds::register_type(participant_.get(), new tf2_msgs::msg::TFMessagePubSubType());
+    tf_writer_ =
+        publisher_->create_datawriter(topic(config_.topics.tf, tf_type_), dds::tf_writer_qos());
+    if (!tf_writer_) throw std::runtime_error("cannot create the writer of " + config_.topics.tf);
+  }
   sink_ = std::make_unique<Sink>(poses_writer, summary_writer, relay_);
   worker_ = std::make_unique<MappingWorker>(*core_, queue_, *sink_, config_);
   relay_.start();
@@ -148,10 +156,10 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
                                                << fdds::StatusMask::sample_lost());
   if (!reader_) throw std::runtime_error("cannot create the map patch reader");
   next_status_ = Clock::now();
-  spdlog::info("DDS participant up: domain {}, profile {}, reading {}, publishing {} and {}",
-               config_.dds.domain, service::to_string(config_.dds.profile),
-               config_.topics.map_patches, config_.topics.keyframe_poses,
-               config_.topics.map_summary);
+  spdlog::info("DDS participant up: domain {} ({}), profile {}, reading {}, publishing {} and {}",
+               config_.dds.domain, service::to_string(config_.dds.domain_source),
+               service::to_string(config_.dds.profile), config_.topics.map_patches,
+               config_.topics.keyframe_poses, config_.topics.map_summary);
 }
 
 AggregatorNode::~AggregatorNode() {
@@ -180,11 +188,22 @@ void AggregatorNode::subscribe_odometry(const WorkerStatus& status) {
                    out_topic);
       continue;
     }
-    relay_.add_stream(stream, [writer, stream](const nav_msgs::msg::Odometry& msg) {
-      nav_msgs::msg::Odometry copy = msg;
-      if (!writer->write(&copy))
-        spdlog::warn("cannot publish the map-frame odometry of {}", stream);
-    });
+    MapOdometryRelay::PublishTransform publish_transform;
+    if (tf_writer_) {
+      fdds::DataWriter* tf_writer = tf_writer_;
+      publish_transform = [tf_writer, stream](const geometry_msgs::msg::TransformStamped& t) {
+        tf2_msgs::msg::TFMessage msg = dds::to_tf_message(t);
+        if (!tf_writer->write(&msg)) spdlog::warn("cannot publish the map transform of {}", stream);
+      };
+    }
+    relay_.add_stream(
+        stream,
+        [writer, stream](const nav_msgs::msg::Odometry& msg) {
+          nav_msgs::msg::Odometry copy = msg;
+          if (!writer->write(&copy))
+            spdlog::warn("cannot publish the map-frame odometry of {}", stream);
+        },
+        std::move(publish_transform));
     o.listener = std::make_unique<OdometryListener>(stream, relay_);
     o.reader = subscriber_->create_datareader(in_t, dds::odom_reader_qos(), o.listener.get(),
                                               fdds::StatusMask::data_available());

@@ -15,9 +15,11 @@ MapOdometryRelay::~MapOdometryRelay() {
   stop();
 }
 
-void MapOdometryRelay::add_stream(const std::string& stream, Publish publish) {
+void MapOdometryRelay::add_stream(const std::string& stream, Publish publish,
+                                  PublishTransform publish_transform) {
   std::lock_guard lock(mutex_);
   streams_[stream].publish = std::move(publish);
+  streams_[stream].publish_transform = std::move(publish_transform);
 }
 
 void MapOdometryRelay::offer(const std::string& stream, nav_msgs::msg::Odometry odom,
@@ -78,6 +80,7 @@ void MapOdometryRelay::stop() {
 void MapOdometryRelay::flush() {
   struct Work {
     const Publish* publish;
+    const PublishTransform* publish_transform;
     nav_msgs::msg::Odometry odom;
     MapCorrection correction;
     Stream* stream;
@@ -88,7 +91,9 @@ void MapOdometryRelay::flush() {
     pending_ = false;
     for (auto& [name, s] : streams_) {
       if (!s.pending) continue;
-      if (s.publish) work.push_back({&s.publish, std::move(*s.pending), *s.correction, &s});
+      if (s.publish)
+        work.push_back(
+            {&s.publish, &s.publish_transform, std::move(*s.pending), *s.correction, &s});
       s.pending.reset();
     }
   }
@@ -96,6 +101,9 @@ void MapOdometryRelay::flush() {
   // read, so the pointers stay valid and unchanged outside the lock.
   for (Work& w : work) {
     (*w.publish)(to_map_odometry(w.odom, w.correction));
+    if (*w.publish_transform) {
+      if (const auto tf = to_map_transform(w.odom, w.correction)) (*w.publish_transform)(*tf);
+    }
     std::lock_guard lock(mutex_);
     ++w.stream->counts.published;
   }

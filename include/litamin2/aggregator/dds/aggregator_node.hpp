@@ -79,7 +79,7 @@ class AggregatorNode {
   PatchListener listener_;
   dds::ParticipantPtr participant_;
   eprosima::fastdds::dds::TypeSupport patch_type_, poses_type_, summary_type_, status_type_,
-      odometry_type_;
+      odometry_type_, tf_type_;
   /// The types of patch_type_ and odometry_type_ (owned by them), for their failure counts.
   dds::CheckedType<litamin2::msg::MapPatchPubSubType>* checked_patch_type_ = nullptr;
   dds::CheckedType<nav_msgs::msg::OdometryPubSubType>* checked_odometry_type_ = nullptr;
@@ -87,6 +87,8 @@ class AggregatorNode {
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
   eprosima::fastdds::dds::DataWriter* status_writer_ = nullptr;
+  /// topics.tf (null when empty or without odometry): map -> odom per stream.
+  eprosima::fastdds::dds::DataWriter* tf_writer_ = nullptr;
   MapOdometryRelay relay_;
   std::map<std::string, OdometryStream> odometry_;
   std::unique_ptr<Sink> sink_;

@@ -45,6 +45,8 @@ class MapOdometryRelay {
   using Clock = std::chrono::steady_clock;
   /// Writes one map-frame odometry message of a stream; called on the relay's thread.
   using Publish = std::function<void(const nav_msgs::msg::Odometry&)>;
+  /// Writes the stream's map -> odom transform (to_map_transform) with each of those poses.
+  using PublishTransform = std::function<void(const geometry_msgs::msg::TransformStamped&)>;
 
   MapOdometryRelay();
   /// Stops (see stop()).
@@ -52,8 +54,10 @@ class MapOdometryRelay {
   MapOdometryRelay(const MapOdometryRelay&) = delete;
   MapOdometryRelay& operator=(const MapOdometryRelay&) = delete;
 
-  /// Registers a stream and where its map-frame poses go (before its odometry is read).
-  void add_stream(const std::string& stream, Publish publish);
+  /// Registers a stream and where its map-frame poses (and, if given, its map -> odom
+  /// transforms) go, before its odometry is read.
+  void add_stream(const std::string& stream, Publish publish,
+                  PublishTransform publish_transform = {});
   /// Listener thread: the stream's latest odometry. Never waits but for a short lock.
   void offer(const std::string& stream, nav_msgs::msg::Odometry odom,
              Clock::time_point now = Clock::now());
@@ -74,6 +78,7 @@ class MapOdometryRelay {
  private:
   struct Stream {
     Publish publish;
+    PublishTransform publish_transform;
     std::optional<nav_msgs::msg::Odometry> pending;
     std::optional<MapCorrection> correction;
     OdometryStreamStatus counts;
