@@ -42,6 +42,11 @@ void validate(const AggregatorConfig& config) {
     check_topic(t.tf, "topics.tf");
     if (distinct.count(t.tf)) throw ConfigError("topics.tf: '" + t.tf + "' is another topic's");
   }
+  if (!t.map_cloud.empty()) {
+    check_topic(t.map_cloud, "topics.map_cloud");
+    if (distinct.count(t.map_cloud) || t.map_cloud == t.tf)
+      throw ConfigError("topics.map_cloud: '" + t.map_cloud + "' is another topic's");
+  }
   if (config.store.path.empty()) throw ConfigError("store.path: must not be empty");
   try {
     mapping::validate(config.mapper);

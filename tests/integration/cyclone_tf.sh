@@ -5,7 +5,8 @@
 # odometry of the same stamp bit for bit, and a reader that joins after the daemon published
 # rt/tf_static (transient-local) must get base_link -> the sensor frame with the extrinsic.
 # litamin2-aggregator runs too: its map -> <stream>/odom transforms (with each map-frame pose)
-# must reach the reader, at odometry stamps.
+# must reach the reader, at odometry stamps, and a late reader of its map cloud
+# (sensor_msgs/PointCloud2, transient-local) gets the map's points in frame map.
 # Usage: cyclone_tf.sh LITAMIN2D AGGREGATOR SIM CYCLONE_CLIENT CYCLONE_TF_READER CYCLONE_XML
 #        WORK_DIR
 set -euo pipefail
@@ -47,6 +48,8 @@ YAML
 
 cat > aggregator.yaml <<YAML
 dds: {domain: $domain, profile: loopback}
+topics: {map_cloud: rt/litamin2/map_cloud}
+publish: {tiles_period_s: 0.2}
 store: {path: aggregator.db}
 watchdog: {enabled: false}
 YAML
@@ -105,6 +108,17 @@ awk -v s="$stream" '
   }
   END { exit ok ? 0 : 1 }' tf_static.txt ||
   { echo "rt/tf_static does not hold $stream/base_link -> velodyne with the extrinsic"; exit 1; }
+
+echo "== a late reader of the aggregator's map cloud"
+timeout 60 "$reader" --cloud rt/litamin2/map_cloud --stream $stream --domain $domain \
+  --timeout 30 --output cloud.txt > cloud.log 2>&1 || { cat cloud.log aggregator.log; exit 1; }
+cat cloud.txt
+grep -q '^cloud map [0-9]* 16 x:0:7 y:4:7 z:8:7 count:12:6$' cloud.txt ||
+  { echo "unexpected map cloud layout"; exit 1; }
+points=$(awk '$1 == "cloud" {print $3}' cloud.txt)
+valid=$(awk '$1 == "valid" {print $2}' cloud.txt)
+[ "$points" -gt 100 ] && [ "$valid" -eq "$points" ] ||
+  { echo "map cloud: $points points, $valid valid"; exit 1; }
 
 kill -TERM $daemon_pid $aggregator_pid
 daemon_status=0

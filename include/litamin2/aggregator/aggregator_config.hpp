@@ -35,6 +35,11 @@ struct TopicsConfig {
   /// Output: each stream's map -> odom transform (tf2_msgs/TFMessage, parent "map", child the
   /// odometry's frame_id) with each map-frame pose. Empty: none.
   std::string tf = "rt/tf";
+  /// Output: the global map as sensor_msgs/PointCloud2 in frame "map" (map_cloud.hpp: x, y, z
+  /// of every fused distribution's mean and its point count), sent whole when tiles changed,
+  /// at most every publish.tiles_period_s; transient-local, so a late viewer gets the latest.
+  /// Empty (the default): none.
+  std::string map_cloud;
 };
 
 struct StoreConfig {

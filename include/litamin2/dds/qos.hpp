@@ -40,7 +40,8 @@ eprosima::fastdds::dds::DataReaderQos status_reader_qos(std::int32_t depth = 10)
 eprosima::fastdds::dds::DataWriterQos tf_writer_qos(std::int32_t depth = 100);
 eprosima::fastdds::dds::DataReaderQos tf_reader_qos(std::int32_t depth = 100);
 /// rt/tf_static: reliable, transient-local, keep-last 1 (tf2_ros::StaticBroadcasterQoS): the
-/// one message holds every static transform of the writer, late readers get it.
+/// one message holds every static transform of the writer, late readers get it. Also the
+/// aggregator's map cloud (the latest map for late viewers).
 eprosima::fastdds::dds::DataWriterQos tf_static_writer_qos();
 eprosima::fastdds::dds::DataReaderQos tf_static_reader_qos();
 

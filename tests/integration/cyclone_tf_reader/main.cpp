@@ -14,6 +14,10 @@
 // after the daemon has published it, and writes the transforms of the first sample: a late
 // joiner must get them.
 //
+// Cloud mode (--cloud TOPIC): subscribes to an aggregator's map cloud (sensor_msgs/PointCloud2,
+// transient-local) and prints "cloud <frame_id> <width> <point_step> <field>:<offset>:<type>..."
+// and the number of points with a finite position and a count > 0, for the first sample.
+//
 // CYCLONEDDS_URI must be set (tests use a loopback-only, unicast-only file).
 // Exit codes: 0 done, 1 usage or DDS error, 2 no match / nothing in time, 3 a transform differs
 // from its odometry or names other frames.
@@ -22,6 +26,7 @@
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -31,6 +36,7 @@
 #include <thread>
 
 #include "nav_msgs/msg/Odometry.h"
+#include "sensor_msgs/msg/PointCloud2.h"
 #include "tf2_msgs/msg/TFMessage.h"
 
 namespace {
@@ -79,7 +85,7 @@ void print(std::FILE* out, std::int64_t stamp, const Reading& r) {
 
 int main(int argc, char** argv) {
   CLI::App app{"Reads rt/tf (checked against rt/<stream>/odom) or rt/tf_static with Cyclone DDS."};
-  std::string stream, output, map_frame = "map";
+  std::string stream, output, map_frame = "map", cloud_topic;
   int domain = 0, count = 0, map_count = 0;
   double timeout_s = 60.0;
   bool static_mode = false;
@@ -92,13 +98,14 @@ int main(int argc, char** argv) {
   app.add_option("--map-count", map_count, "live mode: map transforms of the stream to collect");
   app.add_option("--timeout", timeout_s, "seconds to wait in all")->capture_default_str();
   app.add_flag("--static", static_mode, "read rt/tf_static (transient-local) instead");
+  app.add_option("--cloud", cloud_topic, "read this map cloud topic (transient-local) instead");
   CLI11_PARSE(app, argc, argv);
   const char* uri = std::getenv("CYCLONEDDS_URI");
   if (uri == nullptr || *uri == '\0') {
     std::fprintf(stderr, "cyclone_tf_reader: CYCLONEDDS_URI is not set; refusing to run\n");
     return 1;
   }
-  if (!static_mode && count <= 0) {
+  if (!static_mode && cloud_topic.empty() && count <= 0) {
     std::fprintf(stderr, "cyclone_tf_reader: --count N (> 0) is needed in live mode\n");
     return 1;
   }
@@ -112,6 +119,50 @@ int main(int argc, char** argv) {
   const dds_entity_t participant =
       dds_create_participant(static_cast<dds_domainid_t>(domain), nullptr, nullptr);
   if (!check(participant, "dds_create_participant")) return 1;
+  if (!cloud_topic.empty()) {
+    const dds_entity_t topic =
+        dds_create_topic(participant, &sensor_msgs_msg_dds__PointCloud2__desc, cloud_topic.c_str(),
+                         nullptr, nullptr);
+    if (!check(topic, "dds_create_topic (cloud)")) return 1;
+    dds_qos_t* qos = reader_qos(true, 1);
+    const dds_entity_t reader = dds_create_reader(participant, topic, qos, nullptr);
+    dds_delete_qos(qos);
+    if (!check(reader, "dds_create_reader (cloud)")) return 1;
+    while (std::chrono::steady_clock::now() < deadline) {
+      void* samples[1] = {};
+      dds_sample_info_t infos[1];
+      const dds_return_t n = dds_take(reader, samples, infos, 1, 1);
+      if (!check(n, "dds_take (cloud)")) return 1;
+      if (n > 0 && infos[0].valid_data) {
+        const auto* c = static_cast<const sensor_msgs_msg_dds__PointCloud2_*>(samples[0]);
+        std::fprintf(out, "cloud %s %u %u", c->header.frame_id, c->width, c->point_step);
+        for (std::uint32_t i = 0; i < c->fields._length; ++i) {
+          const auto& f = c->fields._buffer[i];
+          std::fprintf(out, " %s:%u:%u", f.name, f.offset, static_cast<unsigned>(f.datatype));
+        }
+        // The aggregator's layout (x, y, z FLOAT32 at 0, 4, 8; count UINT32 at 12), checked
+        // by the script from the line above before it trusts this count.
+        std::size_t valid = 0;
+        for (std::uint32_t p = 0; c->point_step == 16 && p < c->width; ++p) {
+          float xyz[3];
+          std::uint32_t count = 0;
+          std::memcpy(xyz, c->data._buffer + 16 * p, sizeof(xyz));
+          std::memcpy(&count, c->data._buffer + 16 * p + 12, sizeof(count));
+          if (std::isfinite(xyz[0]) && std::isfinite(xyz[1]) && std::isfinite(xyz[2]) && count > 0)
+            ++valid;
+        }
+        std::fprintf(out, "\nvalid %zu\n", valid);
+        dds_return_loan(reader, samples, n);
+        std::fclose(out);
+        dds_delete(participant);
+        return 0;
+      }
+      if (n > 0) dds_return_loan(reader, samples, n);
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    std::fprintf(stderr, "cyclone_tf_reader: no sample on %s in time\n", cloud_topic.c_str());
+    return 2;
+  }
   const dds_entity_t tf_topic =
       dds_create_topic(participant, &tf2_msgs_msg_dds__TFMessage__desc,
                        static_mode ? "rt/tf_static" : "rt/tf", nullptr, nullptr);
