@@ -184,3 +184,44 @@ TEST(AggregatorMapOdometryRelay, PublishesTheMapTransformWithEachPose) {
   EXPECT_DOUBLE_EQ(transforms[1].transform().translation().y(), 11.0);  // the new correction
   EXPECT_EQ(transforms[1].header().frame_id(), "map");
 }
+
+TEST(AggregatorMapOdometryRelay, AChangedCorrectionSendsItsTransformWithoutANewPose) {
+  MapOdometryRelay relay;
+  int poses = 0;
+  std::vector<geometry_msgs::msg::TransformStamped> transforms;
+  relay.add_stream(
+      "car", [&](const nav_msgs::msg::Odometry&) { ++poses; },
+      [&](const geometry_msgs::msg::TransformStamped& t) { transforms.push_back(t); });
+  // The stream's odometry stopped before its first keyframe reached the mapper.
+  relay.offer("car", odometry_at(pose_of(1, 0, 0, 0), Matrix6d::Zero()));
+  relay.flush();
+  relay.set_correction("car", {pose_of(0, 10, 0, 0), "map"});
+  relay.flush();
+  ASSERT_EQ(transforms.size(), 1u);
+  EXPECT_EQ(poses, 0);  // map_odom waits for a pose; the transform does not
+  EXPECT_DOUBLE_EQ(transforms[0].transform().translation().y(), 10.0);
+  EXPECT_EQ(transforms[0].header().stamp().sec(), 12);  // the latest odometry's stamp
+  EXPECT_EQ(transforms[0].header().stamp().nanosec(), 500000000u);
+  EXPECT_EQ(transforms[0].child_frame_id(), "odom");
+  // The same correction again (poses republished for other keyframes): nothing new.
+  relay.set_correction("car", {pose_of(0, 10, 0, 0), "map"});
+  relay.flush();
+  EXPECT_EQ(transforms.size(), 1u);
+  // A loop moved it, still without a new pose: not at the same stamp again (tf2 ignores a
+  // repeated stamp); the next pose carries it.
+  relay.set_correction("car", {pose_of(0, 10.5, 0, 0), "map"});
+  relay.flush();
+  EXPECT_EQ(transforms.size(), 1u);
+  nav_msgs::msg::Odometry later = odometry_at(pose_of(2, 0, 0, 0), Matrix6d::Zero());
+  later.header().stamp().sec(13);
+  relay.offer("car", later);
+  relay.flush();
+  ASSERT_EQ(transforms.size(), 2u);
+  EXPECT_DOUBLE_EQ(transforms[1].transform().translation().y(), 10.5);
+  EXPECT_EQ(transforms[1].header().stamp().sec(), 13);
+  // Moved again after that pose: sent at once, at the latest stamp (13) only if unused: not.
+  relay.set_correction("car", {pose_of(0, 11, 0, 0), "map"});
+  relay.flush();
+  EXPECT_EQ(transforms.size(), 2u);
+  EXPECT_EQ(poses, 1);
+}

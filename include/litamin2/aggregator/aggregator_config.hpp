@@ -33,7 +33,8 @@ struct TopicsConfig {
   /// child_frame_id as in its odometry), a pattern like `odometry`.
   std::string map_odometry = "rt/*/map_odom";
   /// Output: each stream's map -> odom transform (tf2_msgs/TFMessage, parent "map", child the
-  /// odometry's frame_id) with each map-frame pose. Empty: none.
+  /// odometry's frame_id) when its correction changes and with each map-frame pose. Empty:
+  /// none.
   std::string tf = "rt/tf";
   /// Output: the global map as sensor_msgs/PointCloud2 in frame "map" (map_cloud.hpp: x, y, z
   /// of every fused distribution's mean and its point count), sent whole when tiles changed,

@@ -45,10 +45,11 @@ namespace litamin2::aggregator {
 
 /// The correction as a tf2 transform for rt/tf: parent correction.frame_id ("map"), child the
 /// odometry's frame (header.frame_id, "<stream>/odom"), the odometry's stamp, C itself. Sent
-/// with each map-frame pose (tf2 looks transforms up by stamp and does not extrapolate from
-/// one sample, so a transform sent only when C changes could not be looked up at later
-/// stamps). std::nullopt when both frames are the same (the anchor stream before any merge:
-/// C is the identity and tf2 refuses a frame as its own parent).
+/// when C changes (MapOdometryRelay::set_correction) and with each map-frame pose (tf2 looks
+/// transforms up by stamp and does not extrapolate from one sample, so a transform sent only
+/// when C changes could not be looked up at later stamps). std::nullopt when both frames are the
+/// same (the anchor stream before any merge: C is the identity and tf2 refuses a frame as its own
+/// parent).
 std::optional<geometry_msgs::msg::TransformStamped> to_map_transform(
     const nav_msgs::msg::Odometry& odom, const MapCorrection& correction);
 
