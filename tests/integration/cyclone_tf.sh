@@ -79,8 +79,10 @@ pids+=($reader_pid)
 for _ in $(seq 1 600); do grep -q '^matched' reader.log && break; sleep 0.05; done
 grep -q '^matched' reader.log || { echo "tf reader not matched"; cat reader.log daemon.log; exit 1; }
 
-echo "== cyclone_client: $frames scans in"
-timeout 300 "$client" seq --domain $domain --stream $stream --output received.txt \
+# At 10 Hz, as a sensor: the aggregator reads a stream's odometry from when the stream's first
+# map patch has reached it, so the later frames' odometry reaches it too.
+echo "== cyclone_client: $frames scans in at 10 Hz"
+timeout 300 "$client" seq --domain $domain --stream $stream --output received.txt --period 0.1 \
   --frame-timeout 10 --match-timeout 30 > client.log 2>&1 || { cat client.log daemon.log; exit 1; }
 reader_status=0
 wait $reader_pid || reader_status=$?

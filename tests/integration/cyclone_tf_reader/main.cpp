@@ -32,6 +32,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <set>
 #include <string>
 #include <thread>
 
@@ -196,6 +197,7 @@ int main(int argc, char** argv) {
 
   // Live: transforms and odometry by stamp; each transform checked once its odometry is here.
   std::map<std::int64_t, Reading> transforms, odometry, map_transforms;
+  std::set<std::int64_t> map_stamps;
   int collected = 0, checked = 0, static_read = 0, map_collected = 0, map_checked = 0;
   bool done = false;
   while (!done && std::chrono::steady_clock::now() < deadline) {
@@ -220,6 +222,13 @@ int main(int argc, char** argv) {
         if (static_mode) {
           ++static_read;
         } else if (r.parent == map_frame && r.child.rfind(stream + "/", 0) == 0) {
+          if (!map_stamps.insert(stamp).second) {
+            std::fprintf(stderr,
+                         "cyclone_tf_reader: a second map transform at %lld (tf2 ignores a "
+                         "repeated stamp)\n",
+                         static_cast<long long>(stamp));
+            return 3;
+          }
           map_transforms[stamp] = r;
           ++map_collected;
         } else if (r.parent.rfind(stream + "/", 0) == 0 || r.child.rfind(stream + "/", 0) == 0) {
