@@ -1,8 +1,21 @@
 #include "litamin2/daemon/stream_processor.hpp"
 
+#include <ctime>
+
 #include "litamin2/core/so3.hpp"
 
 namespace litamin2::daemon {
+
+namespace {
+
+/// The calling thread's CPU time, seconds.
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) * 1e-9;
+}
+
+}  // namespace
 
 Eigen::Isometry3d base_pose(const Eigen::Isometry3d& sensor_pose,
                             const Eigen::Isometry3d& extrinsic) {
@@ -26,7 +39,9 @@ void StreamProcessor::process(Frame& frame) {
   const std::optional<Stamp> previous_stamp = last_stamp_;
   if (last_stamp_ && !(*last_stamp_ < frame.stamp)) tracker_->restart_clock();
   last_stamp_ = frame.stamp;
+  const double cpu_before = thread_cpu_seconds();
   const FrameResult result = tracker_->process(frame.cloud, SweepTiming{frame.stamp});
+  stats_.record_tracking_cpu(thread_cpu_seconds() - cpu_before);
   // Without an extrinsic the published pose is the tracker's, bit for bit.
   const Eigen::Isometry3d sensor_pose = result.pose;
   const Eigen::Isometry3d pose =

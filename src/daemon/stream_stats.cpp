@@ -56,6 +56,11 @@ void StreamStats::record_failed() {
   ++counters_.frames_failed;
 }
 
+void StreamStats::record_tracking_cpu(double seconds) {
+  std::lock_guard lock(mutex_);
+  counters_.tracking_cpu_s += seconds;
+}
+
 void StreamStats::record_result(Clock::time_point arrival, Clock::time_point published,
                                 bool keyframe, bool registered, std::size_t map_size) {
   const double latency_ms = std::chrono::duration<double, std::milli>(published - arrival).count();

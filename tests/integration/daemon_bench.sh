@@ -3,81 +3,223 @@
 # daemon (loopback profile, private network namespace); prints per-stream latency (arrival ->
 # odometry published, p50/p99 from the daemon's status), frames dropped, and the offline tool's
 # frames/s on the same scans for comparison. Not a CTest test (timing depends on the machine).
-# QUEUE_DEPTH (default 4) sets the daemon's per-stream queue; PRELOAD=0 makes the replay read
-# scans while publishing instead of before (litamin2-replay --preload); STAGGER=1 spreads the
-# streams over the period (litamin2-replay --stagger).
+#
 # Usage: daemon_bench.sh BUILD_DIR WORK_DIR STREAMS [RATE_HZ=10|max] [FRAMES=30] [THREADS=0]
+# Environment:
+#   QUEUE_DEPTH  the daemon's per-stream queue (default 4)
+#   PRELOAD=0    the replay reads scans while publishing instead of publishing CDR bytes
+#                serialised before the start (litamin2-replay --preload, the default)
+#   STAGGER=1    spread the streams over the period (litamin2-replay --stagger)
+#   PIN=1        one core each: the replay and the probe on CPU 0, litamin2d with one worker
+#                thread (threads: 1) on CPU 1, the offline run on CPU 1 too (taskset), so the
+#                figures are one daemon core's capacity
+#   SENSOR=NAME  the simulator's sensor (default hdl64; vlp16 for VLP-16-size streams)
+#   JSON=FILE    write the run's figures as JSON: streams, rate_hz, frames_expected,
+#                frames_processed, dropped, latency_ms_p50 (median of the streams' p50),
+#                latency_ms_p99 (worst stream's p99), daemon_cpu_ms_per_frame (the daemon's
+#                utime+stime from the first publication to the end, per frame processed),
+#                tracking_cpu_ms_per_frame (its trackers' thread CPU in Tracker::process, from
+#                the daemon's status), dds_path_cpu_ms_per_frame (their difference: taking,
+#                deserialising, converting, publishing) and dds_path_share_of_tracking, all from
+#                one run; offline_cpu_ms_per_frame (the offline tool's wall time per frame, 1
+#                thread, for comparison)
+#   SEARCH=1     find the largest stream count with 0 dropped and p99 < P99_MS (default 20):
+#                doubles from STREAMS until a run fails, then bisects; each run's JSON in
+#                WORK_DIR/search/<n>.json and the answer in JSON (or printed)
 set -euo pipefail
 source "$(dirname "$0")/daemon_netns.sh"
-build=$1
+build=$(cd "$1" && pwd)
 work=$2
 streams=$3
 rate=${4:-10}
 frames=${5:-30}
 threads=${6:-0}
 tools=$build/tools
+sensor=${SENSOR:-hdl64}
 mkdir -p "$work"
+work=$(cd "$work" && pwd)
 cd "$work"
-if [ ! -f seq/times.txt ] || [ "$(ls seq/velodyne | wc -l)" -ne "$frames" ]; then
-  rm -rf seq offline
-  "$tools/sim/litamin2-sim" --builtin loop --frames 0:$frames --output seq > sim.log 2>&1
-fi
-"$tools/odometry/litamin2-odometry" seq --output offline --threads 1 --quiet > odometry.log 2>&1
-offline_fps=$(python3 -c "import json;print(json.load(open('offline/stats.json'))['frames_per_second'])")
 
-ids=()
-{
-  echo "dds: {domain: 19, profile: loopback}"
-  echo "discovery: {enabled: false}"
-  echo "threads: $threads"
-  echo "queue_depth: ${QUEUE_DEPTH:-4}"
-  echo "outputs: {status_period_s: 0.5}"
-  echo "streams:"
-  for i in $(seq 1 "$streams"); do echo "  - id: bench_$i"; ids+=("bench_$i"); done
-} > bench.yaml
-"$tools/litamin2d/litamin2d" --config bench.yaml > daemon.log 2>&1 &
-daemon_pid=$!
-trap 'kill -9 $daemon_pid 2>/dev/null || true' EXIT
-probe_args=()
-replay_streams=()
-replay_dirs=()
-for id in "${ids[@]}"; do
-  probe_args+=(--stream "$id=offline/poses_kitti.txt")
-  replay_streams+=(--stream "$id")
-  replay_dirs+=(seq)
-done
-rm -f probe.ready
-"$build/tests/integration/daemon_probe" --domain 19 --expect "$frames" --timeout 60 \
-  --ready-file probe.ready "${probe_args[@]}" > probe.log 2>&1 &
-probe_pid=$!
-for _ in $(seq 1 300); do [ -f probe.ready ] && break; sleep 0.1; done
-start=$(date +%s.%N)
-if [ "$rate" = max ]; then rate_args=(--max); else rate_args=(--rate "$rate"); fi
-# The replay reads and converts every scan before publishing (PRELOAD=0: while publishing), so
-# that on this one machine its disk reading does not take CPU from the daemon it measures.
-replay_args=()
-if [ "${PRELOAD:-1}" = 1 ]; then replay_args=(--preload); fi
-# STAGGER=1 spreads the streams' frames over the period (independent sensors); default: every
-# stream publishes at the same instant, the worst case for latency.
-if [ "${STAGGER:-0}" = 1 ] && [ "$rate" != max ]; then replay_args+=(--stagger); fi
-"$tools/replay/litamin2-replay" --domain 19 --profile loopback "${rate_args[@]}" "${replay_args[@]}" \
-  "${replay_dirs[@]}" "${replay_streams[@]}" > replay.log 2>&1 || true
-wait $probe_pid || true
-end=$(date +%s.%N)
-grep -E "^Vm(HWM|RSS)" /proc/$daemon_pid/status | tr -s ' \t' ' ' | paste -sd, - > memory.txt || true
-kill -TERM $daemon_pid
-wait $daemon_pid || true
-grep -E "^status |bit-identical|PASS|FAIL" probe.log || true
-echo "litamin2d memory at the end: $(cat memory.txt)"
-python3 - "$streams" "$frames" "$start" "$end" "$offline_fps" <<'PY'
-import re, sys
-streams, frames, start, end, offline = int(sys.argv[1]), int(sys.argv[2]), *map(float, sys.argv[3:6])
-p50, p99, dropped = [], [], 0
-for line in open("probe.log"):
-    m = re.match(r"status \S+: processed (\d+), dropped (\d+), bad \d+, p50 ([\d.]+) ms, p99 ([\d.]+) ms", line)
+daemon_cpu=()
+replay_cpu=()
+if [ "${PIN:-0}" = 1 ]; then
+  [ "$(nproc)" -ge 2 ] || { echo "PIN=1 needs two CPUs" >&2; exit 1; }
+  daemon_cpu=(taskset -c 1)
+  replay_cpu=(taskset -c 0)
+  threads=1
+fi
+
+if [ ! -f "seq/times.txt" ] || [ "$(ls seq/velodyne | wc -l)" -ne "$frames" ] ||
+  [ "$(cat seq/sensor 2>/dev/null)" != "$sensor" ]; then
+  rm -rf seq offline
+  "$tools/sim/litamin2-sim" --builtin loop --sensor "$sensor" --frames 0:$frames --output seq \
+    > sim.log 2>&1
+  echo "$sensor" > seq/sensor
+fi
+if [ ! -f offline/stats.json ]; then
+  "${daemon_cpu[@]}" "$tools/odometry/litamin2-odometry" seq --output offline --threads 1 --quiet \
+    > odometry.log 2>&1
+fi
+read -r offline_fps points_per_scan < <(python3 -c "
+import json, os
+s = json.load(open('offline/stats.json'))
+n = os.path.getsize(sorted(os.scandir('seq/velodyne'), key=lambda e: e.name)[0].path) // 16
+print(s['frames_per_second'], n)")
+
+# One run with N streams into a fresh daemon; its figures go to run_N/result.json.
+run_once() {
+  local n=$1 dir=run_$1
+  rm -rf "$dir" && mkdir -p "$dir"
+  local ids=()
+  {
+    echo "dds: {domain: 19, profile: loopback}"
+    echo "discovery: {enabled: false}"
+    echo "threads: $threads"
+    echo "queue_depth: ${QUEUE_DEPTH:-4}"
+    echo "outputs: {status_period_s: 0.5}"
+    echo "streams:"
+    for i in $(seq 1 "$n"); do echo "  - id: bench_$i"; ids+=("bench_$i"); done
+  } > "$dir/bench.yaml"
+  "${daemon_cpu[@]}" "$tools/litamin2d/litamin2d" --config "$dir/bench.yaml" > "$dir/daemon.log" 2>&1 &
+  local daemon_pid=$!
+  local probe_args=() replay_streams=() replay_dirs=()
+  for id in "${ids[@]}"; do
+    probe_args+=(--stream "$id=offline/poses_kitti.txt")
+    replay_streams+=(--stream "$id")
+    replay_dirs+=(seq)
+  done
+  rm -f "$dir/probe.ready"
+  "${replay_cpu[@]}" "$build/tests/integration/daemon_probe" --domain 19 --expect "$frames" \
+    --timeout $((60 + n * frames / 20)) --ready-file "$dir/probe.ready" "${probe_args[@]}" \
+    > "$dir/probe.log" 2>&1 &
+  local probe_pid=$!
+  for _ in $(seq 1 300); do [ -f "$dir/probe.ready" ] && break; sleep 0.1; done
+  local rate_args replay_args=()
+  if [ "$rate" = max ]; then rate_args=(--max); else rate_args=(--rate "$rate"); fi
+  # The replay serialises every scan before publishing (PRELOAD=0: reads while publishing), so
+  # that on this one machine it does not take CPU from the daemon it measures.
+  if [ "${PRELOAD:-1}" = 1 ]; then replay_args=(--preload); fi
+  # STAGGER=1 spreads the streams' frames over the period (independent sensors); default: every
+  # stream publishes at the same instant, the worst case for latency.
+  if [ "${STAGGER:-0}" = 1 ] && [ "$rate" != max ]; then replay_args+=(--stagger); fi
+  # The daemon's CPU is counted from when the replay starts publishing (after its preload and
+  # discovery), read from /proc/<pid>/stat (utime + stime, clock ticks).
+  "${replay_cpu[@]}" "$tools/replay/litamin2-replay" --domain 19 --profile loopback \
+    "${rate_args[@]}" "${replay_args[@]}" "${replay_dirs[@]}" "${replay_streams[@]}" \
+    > "$dir/replay.log" 2>&1 &
+  local replay_pid=$!
+  local cpu_start=""
+  for _ in $(seq 1 6000); do
+    if grep -qE "publishing [0-9]+ frames" "$dir/replay.log" 2>/dev/null ||
+      ! kill -0 $replay_pid 2>/dev/null; then break; fi
+    sleep 0.05
+  done
+  cpu_start=$(awk '{print $14 + $15}' /proc/$daemon_pid/stat)
+  local start end
+  start=$(date +%s.%N)
+  wait $replay_pid || true
+  wait $probe_pid || true
+  end=$(date +%s.%N)
+  local cpu_end
+  cpu_end=$(awk '{print $14 + $15}' /proc/$daemon_pid/stat)
+  grep -E "^Vm(HWM|RSS)" /proc/$daemon_pid/status | tr -s ' \t' ' ' | paste -sd, - \
+    > "$dir/memory.txt" || true
+  kill -TERM $daemon_pid
+  wait $daemon_pid || true
+  python3 - "$n" "$frames" "$start" "$end" "$offline_fps" "$cpu_start" "$cpu_end" \
+    "$(getconf CLK_TCK)" "$rate" "$points_per_scan" "$dir" <<'PY'
+import json, re, sys
+n, frames = int(sys.argv[1]), int(sys.argv[2])
+start, end, offline_fps = map(float, sys.argv[3:6])
+cpu_start, cpu_end, ticks = float(sys.argv[6]), float(sys.argv[7]), float(sys.argv[8])
+rate, points, out = sys.argv[9], int(sys.argv[10]), sys.argv[11]
+p50, p99, dropped, processed, tracking_s = [], [], 0, 0, 0.0
+for line in open(out + "/probe.log"):
+    m = re.match(r"status \S+: processed (\d+), dropped (\d+), bad \d+, p50 ([\d.]+) ms, "
+                 r"p99 ([\d.]+) ms, map \d+, tracking cpu ([\d.]+) s", line)
     if m:
-        dropped += int(m.group(2)); p50.append(float(m.group(3))); p99.append(float(m.group(4)))
-print(f"{streams} stream(s): latency p50 median {sorted(p50)[len(p50)//2]:.1f} ms, "
-      f"worst p99 {max(p99):.1f} ms, {dropped} frame(s) dropped; offline tool {offline:.1f} frames/s "
-      f"(1 thread); {streams*frames} frames in {end-start:.2f} s")
+        processed += int(m.group(1)); dropped += int(m.group(2))
+        p50.append(float(m.group(3))); p99.append(float(m.group(4)))
+        tracking_s += float(m.group(5))
+expected = n * frames
+# The daemon's CPU from the first publication to the end, per frame processed, and the part of
+# it its trackers spent in Tracker::process (thread CPU clocks, the daemon's own status): what
+# is left is the DDS path (taking, deserialising, converting, publishing odometry, patches and
+# status) and the daemon's other threads.
+daemon_ms = (cpu_end - cpu_start) / ticks * 1000.0 / processed if processed else None
+tracking_ms = tracking_s * 1000.0 / processed if processed else None
+offline_ms = 1000.0 / offline_fps
+result = {
+    "streams": n, "rate_hz": rate if rate == "max" else float(rate), "points_per_scan": points,
+    "frames_expected": expected, "frames_processed": processed,
+    "dropped": dropped + max(0, expected - processed - dropped),
+    "latency_ms_p50": sorted(p50)[len(p50) // 2] if p50 else None,
+    "latency_ms_p99": max(p99) if len(p99) == n else None,
+    "daemon_cpu_ms_per_frame": daemon_ms, "tracking_cpu_ms_per_frame": tracking_ms,
+    "offline_cpu_ms_per_frame": offline_ms,
+    "dds_path_cpu_ms_per_frame": daemon_ms - tracking_ms if processed else None,
+    "dds_path_share_of_tracking": (daemon_ms - tracking_ms) / tracking_ms if processed and tracking_ms > 0 else None,
+    "wall_s": end - start,
+}
+json.dump(result, open(out + "/result.json", "w"), indent=1)
+fmt = lambda v, f="%.2f": "-" if v is None else f % v
+print(f"{n} stream(s) x {frames} frames ({points} points) at {rate}: {processed}/{expected} "
+      f"processed, {result['dropped']} dropped, latency p50 {fmt(result['latency_ms_p50'], '%.1f')} ms, "
+      f"worst p99 {fmt(result['latency_ms_p99'], '%.1f')} ms; CPU per frame daemon "
+      f"{fmt(daemon_ms)} ms, of it tracking {fmt(tracking_ms)} ms, DDS path "
+      f"{fmt(result['dds_path_cpu_ms_per_frame'])} ms; offline tool {offline_ms:.2f} ms a frame "
+      f"(wall, 1 thread); {end - start:.2f} s")
 PY
+  echo "litamin2d memory at the end: $(cat "$dir/memory.txt")"
+}
+
+# True if run_N met the bound: every frame processed, none dropped, p99 under P99_MS.
+run_passes() {
+  python3 - "run_$1/result.json" "${P99_MS:-20}" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+ok = r["dropped"] == 0 and r["frames_processed"] == r["frames_expected"] and \
+     r["latency_ms_p99"] is not None and r["latency_ms_p99"] < float(sys.argv[2])
+sys.exit(0 if ok else 1)
+PY
+}
+
+if [ "${SEARCH:-0}" != 1 ]; then
+  run_once "$streams"
+  [ -z "${JSON:-}" ] || cp "run_$streams/result.json" "$JSON"
+  exit 0
+fi
+
+# Search: double while runs pass, then bisect between the last pass and the first failure.
+mkdir -p search
+good=0
+bad=0
+n=$streams
+while :; do
+  run_once "$n"
+  cp "run_$n/result.json" "search/$n.json"
+  if run_passes "$n"; then
+    good=$n
+    n=$((n * 2))
+  else
+    bad=$n
+    break
+  fi
+  [ "$n" -le "${SEARCH_MAX:-1024}" ] || break
+done
+while [ "$bad" -gt 0 ] && [ $((bad - good)) -gt "${SEARCH_STEP:-1}" ]; do
+  n=$(((good + bad) / 2))
+  run_once "$n"
+  cp "run_$n/result.json" "search/$n.json"
+  if run_passes "$n"; then good=$n; else bad=$n; fi
+done
+echo "largest stream count with 0 dropped and p99 < ${P99_MS:-20} ms: $good (first failure: $bad)"
+if [ -n "${JSON:-}" ]; then
+  python3 - "$good" "$bad" "${P99_MS:-20}" search "$JSON" <<'PY'
+import json, os, sys
+good, bad, bound, folder, out = int(sys.argv[1]), int(sys.argv[2]), float(sys.argv[3]), sys.argv[4], sys.argv[5]
+runs = [json.load(open(os.path.join(folder, f))) for f in sorted(os.listdir(folder), key=lambda f: int(f[:-5]))]
+json.dump({"largest_streams": good, "first_failing_streams": bad or None, "p99_bound_ms": bound,
+           "runs": runs}, open(out, "w"), indent=1)
+PY
+fi

@@ -54,6 +54,14 @@ TEST(StreamStats, CountsAndLatency) {
   EXPECT_NEAR(s.frames_per_second, 99.0 / (9.9 + 0.099), 1e-6);
 }
 
+TEST(StreamStats, TrackingCpuAddsUpOverFrames) {
+  StreamStats stats;
+  EXPECT_EQ(stats.snapshot().tracking_cpu_s, 0.0);
+  stats.record_tracking_cpu(0.004);
+  stats.record_tracking_cpu(0.0025);
+  EXPECT_NEAR(stats.snapshot().tracking_cpu_s, 0.0065, 1e-12);
+}
+
 TEST(StreamStats, WindowForgetsOldResults) {
   StreamStats stats(1s);
   const Clock::time_point t0 = Clock::now();

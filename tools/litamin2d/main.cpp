@@ -8,6 +8,7 @@
 #include "litamin2/core/config_error.hpp"
 #include "litamin2/daemon/dds/daemon_node.hpp"
 #include "litamin2/dds/security_files.hpp"
+#include "litamin2/service/heap_tuning.hpp"
 #include "litamin2/service/logging.hpp"
 #include "litamin2/service/service_loop.hpp"
 #include "litamin2/version.hpp"
@@ -42,6 +43,8 @@ std::string describe(const DaemonConfig& c) {
 int main(int argc, char** argv) {
   // Before any thread exists, so that every thread inherits the blocked SIGTERM/SIGINT/SIGHUP.
   service::ServiceSignals signals;
+  // Scan-sized buffers stay in the heap for the next scan (service/heap_tuning.hpp).
+  const std::string heap_policy = service::keep_large_buffers_in_heap();
 
   CLI::App app{"litamin2d: LiTAMIN2 LiDAR odometry for many sensor streams over DDS"};
   std::string config_file = "/etc/litamin2/litamin2d.yaml";
@@ -81,6 +84,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   spdlog::info("litamin2d {} starting: {}", litamin2::version(), describe(config));
+  if (!heap_policy.empty()) spdlog::info("heap policy left as it is: {}", heap_policy);
 
   ServiceLoop service_loop(config.watchdog.enabled);
   int exit_code = 0;

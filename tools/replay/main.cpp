@@ -17,6 +17,7 @@
 
 #include "litamin2/dds/participant_factory.hpp"
 #include "litamin2/dds/qos.hpp"
+#include "litamin2/dds/serialized_pointcloud2.hpp"
 #include "litamin2/io/io_error.hpp"
 #include "litamin2/service/topic_names.hpp"
 #include "replay/replay_options.hpp"
@@ -85,7 +86,11 @@ int main(int argc, char** argv) {
     spdlog::error("{}", error);
     return kExitError;
   }
-  fdds::TypeSupport type(new sensor_msgs::msg::PointCloud2PubSubType());
+  // --preload publishes each scan's CDR bytes, serialised once before the start (as rosbag2
+  // replays serialised messages): a write then costs a copy, not a serialisation.
+  fdds::TypeSupport type(options.preload ? static_cast<fdds::TopicDataType*>(
+                                               new litamin2::dds::SerializedPointCloud2Type())
+                                         : new sensor_msgs::msg::PointCloud2PubSubType());
   type.register_type(participant.get());
   fdds::Publisher* publisher = participant->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
   if (!publisher) {
@@ -166,6 +171,9 @@ int main(int argc, char** argv) {
   const std::chrono::nanoseconds period =
       options.max_rate ? std::chrono::nanoseconds(0)
                        : std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / options.rate_hz));
+  std::size_t total_frames = 0;
+  for (const auto& stream : streams) total_frames += stream->frame_count();
+  spdlog::info("publishing {} frames of {} stream(s)", total_frames, streams.size());
   const auto start = Clock::now() + std::chrono::milliseconds(10);
   std::vector<std::thread> threads;
   for (std::size_t s = 0; s < streams.size(); ++s) {
@@ -177,8 +185,6 @@ int main(int argc, char** argv) {
       stream->run(stream_start, period, g_stop, !options.best_effort, options.timeout_s);
     });
   }
-  std::size_t total_frames = 0;
-  for (const auto& stream : streams) total_frames += stream->frame_count();
   std::atomic<bool> done{false};
   std::thread progress([&] {
     auto next = Clock::now() + std::chrono::seconds(2);

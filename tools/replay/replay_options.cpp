@@ -51,9 +51,10 @@ int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& sh
                "instants (the worst case for a subscriber)")
       ->excludes(max);
   app.add_flag("--preload", options.preload,
-               "Read and convert every scan before publishing the first (memory: ~2 MB per "
-               "HDL-64 scan and stream, freed as written), so that reading does not compete with "
-               "the subscribers for the CPU; for benchmarks on one machine");
+               "Read, convert and serialise (CDR) every scan before publishing the first, then "
+               "publish the stored bytes, as a recorder replays serialised messages (memory: ~2 "
+               "MB per HDL-64 scan and stream, freed as written), so that the publisher costs "
+               "little CPU beside the subscribers; for benchmarks on one machine");
   app.add_option("--domain", domain, "DDS domain id (default 0)")->check(CLI::Range(0, 232));
   app.add_option("--profile", profile,
                  "Transport: loopback (default: 127.0.0.1 and shared memory only), shm, default, "

@@ -30,11 +30,14 @@ void StreamPublisher::run(Clock::time_point start, std::chrono::nanoseconds peri
                           const std::atomic<bool>& stop, bool reliable, double timeout_s) {
   for (std::size_t i = first_; i < last_ && !stop.load(); ++i) {
     sensor_msgs::msg::PointCloud2 msg;
-    if (!preloaded_.empty()) {
-      msg = std::move(preloaded_[i - first_]);
+    dds::SerializedPointCloud2 scan;
+    const bool preloaded = !preloaded_.empty();
+    if (preloaded) {
+      scan = std::move(preloaded_[i - first_]);
     } else if (!convert(i, msg)) {
       break;
     }
+    void* sample = preloaded ? static_cast<void*>(&scan) : static_cast<void*>(&msg);
     const auto slot = start + period * static_cast<std::int64_t>(i - first_);
     // Sleep in short steps so that an interrupt is seen quickly.
     while (!stop.load()) {
@@ -45,19 +48,19 @@ void StreamPublisher::run(Clock::time_point start, std::chrono::nanoseconds peri
     }
     if (stop.load()) break;
     const auto before = Clock::now();
-    bool ok = writer_->write(&msg);
+    bool ok = writer_->write(sample);
     if (!ok && reliable && !stop.load()) {
       counters_.retried++;
       wait_for_acknowledgments(timeout_s);
-      ok = writer_->write(&msg);
+      ok = writer_->write(sample);
     }
     const auto after = Clock::now();
     counters_.write_ns += static_cast<std::uint64_t>(
         std::chrono::duration_cast<std::chrono::nanoseconds>(after - before).count());
     if (ok) {
       counters_.published++;
-      counters_.points += msg.width() * msg.height();
-      counters_.bytes += msg.data().size();
+      counters_.points += preloaded ? scan.points : std::uint64_t{msg.width()} * msg.height();
+      counters_.bytes += preloaded ? scan.data_bytes : msg.data().size();
     } else {
       counters_.failed++;
       spdlog::warn(
@@ -83,9 +86,17 @@ bool StreamPublisher::convert(std::size_t i, sensor_msgs::msg::PointCloud2& msg)
 
 bool StreamPublisher::preload() {
   preloaded_.clear();
-  preloaded_.resize(last_ - first_);
+  preloaded_.reserve(last_ - first_);
   for (std::size_t i = first_; i < last_; ++i) {
-    if (!convert(i, preloaded_[i - first_])) {
+    sensor_msgs::msg::PointCloud2 msg;
+    if (!convert(i, msg)) {
+      preloaded_.clear();
+      return false;
+    }
+    try {
+      preloaded_.push_back(dds::serialize_pointcloud2(msg));
+    } catch (const std::exception& e) {
+      error_ = "scan " + std::to_string(i) + ": " + e.what();
       preloaded_.clear();
       return false;
     }

@@ -9,6 +9,7 @@
 
 #include <fastdds/dds/publisher/DataWriter.hpp>
 
+#include "litamin2/dds/serialized_pointcloud2.hpp"
 #include "litamin2/io/kitti_sequence.hpp"
 #include "sensor_msgs/msg/PointCloud2.h"
 
@@ -59,7 +60,8 @@ class StreamPublisher {
 
   /// Waits until every reliable reader acknowledged all samples, at most `timeout_s`.
   bool wait_for_acknowledgments(double timeout_s);
-  /// Reads and converts every frame now instead of before its slot in run(). False (with
+  /// Reads, converts and serialises every frame now instead of before its slot in run(); run()
+  /// then writes the stored bytes, so `writer` must be of SerializedPointCloud2Type. False (with
   /// error() set) if a scan cannot be read.
   bool preload();
 
@@ -71,8 +73,8 @@ class StreamPublisher {
   eprosima::fastdds::dds::DataWriter* writer_;
   StreamCounters counters_;
   std::string error_;
-  /// Frames [first, last) converted by preload(), emptied as they are written.
-  std::vector<sensor_msgs::msg::PointCloud2> preloaded_;
+  /// Frames [first, last) serialised by preload(), released as they are written.
+  std::vector<dds::SerializedPointCloud2> preloaded_;
   /// Reads and converts frame i into `msg`; false (error_ set) if it cannot be read.
   bool convert(std::size_t i, sensor_msgs::msg::PointCloud2& msg);
   double elapsed_s_ = 0.0;

@@ -46,6 +46,10 @@ struct StatsSnapshot {
   double latency_max_ms = 0.0;
   /// Results in the window.
   std::size_t window_samples = 0;
+  /// CPU time the stream's tracker spent in Tracker::process over every processed frame (its
+  /// thread's CPU clock), seconds: with the process's CPU time it separates tracking from the
+  /// rest of the daemon's work per frame (transport, conversion, publishing).
+  double tracking_cpu_s = 0.0;
 };
 
 class StreamStats {
@@ -65,6 +69,8 @@ class StreamStats {
   void record_non_finite_points(std::uint64_t points);
   void record_dropped(std::uint64_t frames = 1);
   void record_failed();
+  /// CPU seconds one frame's tracking took (added to tracking_cpu_s).
+  void record_tracking_cpu(double seconds);
   /// A result published at `published` for a frame that arrived at `arrival`.
   void record_result(Clock::time_point arrival, Clock::time_point published, bool keyframe,
                      bool registered, std::size_t map_size);

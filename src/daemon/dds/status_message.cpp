@@ -38,6 +38,7 @@ diagnostic_msgs::msg::DiagnosticArray make_status_message(const std::vector<Stre
     for (const auto& [reason, count] : s.stats.bad_message_reasons)
       v.push_back(key_value("bad_messages." + reason, std::to_string(count)));
     v.push_back(key_value("frames_out_of_order", std::to_string(s.stats.frames_out_of_order)));
+    v.push_back(key_value("tracking_cpu_s", fixed_number(s.stats.tracking_cpu_s, 6)));
     v.push_back(key_value("points_non_finite", std::to_string(s.stats.points_non_finite)));
     v.push_back(key_value("samples_lost", std::to_string(s.samples_lost)));
     v.push_back(key_value("keyframes", std::to_string(s.stats.keyframes)));

@@ -215,10 +215,12 @@ int main(int argc, char** argv) {
     if (status_listener.count == 0) ok = false;
     for (auto& p : probes) {
       auto& v = status_listener.latest[p.id];
-      std::printf("status %s: processed %s, dropped %s, bad %s, p50 %s ms, p99 %s ms, map %s\n",
-                  p.id.c_str(), v["frames_processed"].c_str(), v["frames_dropped"].c_str(),
-                  v["bad_messages"].c_str(), v["latency_p50_ms"].c_str(),
-                  v["latency_p99_ms"].c_str(), v["map_size"].c_str());
+      std::printf(
+          "status %s: processed %s, dropped %s, bad %s, p50 %s ms, p99 %s ms, map %s, tracking "
+          "cpu %s s\n",
+          p.id.c_str(), v["frames_processed"].c_str(), v["frames_dropped"].c_str(),
+          v["bad_messages"].c_str(), v["latency_p50_ms"].c_str(), v["latency_p99_ms"].c_str(),
+          v["map_size"].c_str(), v["tracking_cpu_s"].c_str());
       if (v["frames_processed"] != std::to_string(expect) || v["frames_dropped"] != "0") ok = false;
     }
   }
