@@ -38,6 +38,15 @@ void validate(const AggregatorConfig& config) {
     if (t.odometry == t.map_odometry)
       throw ConfigError("topics: odometry and map_odometry must be different");
   }
+  if (!t.tf.empty()) {
+    check_topic(t.tf, "topics.tf");
+    if (distinct.count(t.tf)) throw ConfigError("topics.tf: '" + t.tf + "' is another topic's");
+  }
+  if (!t.map_cloud.empty()) {
+    check_topic(t.map_cloud, "topics.map_cloud");
+    if (distinct.count(t.map_cloud) || t.map_cloud == t.tf)
+      throw ConfigError("topics.map_cloud: '" + t.map_cloud + "' is another topic's");
+  }
   if (config.store.path.empty()) throw ConfigError("store.path: must not be empty");
   try {
     mapping::validate(config.mapper);

@@ -33,6 +33,8 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
     topics.read("status", config.topics.status);
     topics.read("odometry", config.topics.odometry);
     topics.read("map_odometry", config.topics.map_odometry);
+    topics.read("tf", config.topics.tf);
+    topics.read("map_cloud", config.topics.map_cloud);
     topics.reject_unknown();
   }
 

@@ -148,6 +148,7 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
       StreamConfig stream;
       if (!s.read("id", stream.id)) throw ConfigError(path + ".id: required");
       if (!s.read("topic", stream.topic)) stream.topic = "rt/" + stream.id + "/points";
+      s.read("sensor_frame", stream.sensor_frame);
       const YAML::Node extrinsic = s.child("extrinsic");
       if (extrinsic && !extrinsic.IsNull())
         stream.extrinsic = parse_extrinsic(extrinsic, path + ".extrinsic");
@@ -173,6 +174,12 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
     outputs.read_range("status_period_s", config.outputs.status_period_s, 0.01, 3600.0);
     outputs.read_range("map_patch_history", config.outputs.map_patch_history, 1, 1'000'000);
     outputs.read("odom_frame", config.outputs.odom_frame);
+    outputs.read("base_frame", config.outputs.base_frame);
+    outputs.read("sensor_frame", config.outputs.sensor_frame);
+    outputs.read("frame_prefix", config.outputs.frame_prefix);
+    outputs.read("publish_tf", config.outputs.publish_tf);
+    outputs.read("tf_topic", config.outputs.tf_topic);
+    outputs.read("tf_static_topic", config.outputs.tf_static_topic);
     outputs.reject_unknown();
   }
 

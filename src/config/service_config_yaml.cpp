@@ -2,6 +2,7 @@
 
 #include "litamin2/service/logging.hpp"
 
+#include <cstdlib>
 #include <fstream>
 #include <utility>
 #include <vector>
@@ -13,7 +14,21 @@ using config::YamlSection;
 TransportConfig transport_config_from_yaml(const YAML::Node& node) {
   TransportConfig config;
   YamlSection dds(node, "dds");
-  dds.read_range("domain", config.domain, 0, 232);
+  const YAML::Node domain = dds.child("domain");
+  if (domain && !domain.IsNull()) {
+    dds.read_range("domain", config.domain, 0, 232);
+    config.domain_source = DomainSource::kConfig;
+  } else {
+    // As a ROS 2 node: the environment's domain when the config names none.
+    std::string error;
+    const char* env = std::getenv("ROS_DOMAIN_ID");
+    if (const auto id = parse_ros_domain_id(env, &error)) {
+      config.domain = *id;
+      config.domain_source = DomainSource::kEnvironment;
+    } else if (!error.empty()) {
+      throw ConfigError(error + " (dds.domain is not set, so litamin2 reads it)");
+    }
+  }
   dds.read_enum<TransportProfile>("profile", config.profile,
                                   {{"loopback", TransportProfile::kLoopback},
                                    {"shm", TransportProfile::kShm},

@@ -1,6 +1,7 @@
 #include "litamin2/daemon/daemon_config.hpp"
 
 #include "litamin2/core/config_error.hpp"
+#include "litamin2/daemon/stream_frames.hpp"
 #include "litamin2/service/logging.hpp"
 #include "litamin2/service/topic_names.hpp"
 
@@ -13,6 +14,11 @@ namespace {
 
 void check_topic(const std::string& topic, const std::string& path) {
   if (const auto why = service::topic_name_error(topic)) throw ConfigError(path + ": " + *why);
+}
+
+void check_frame(const std::string& name, const std::string& path) {
+  if (const auto why = frame_name_error(name))
+    throw ConfigError(path + ": '" + name + "' is not a frame name: " + *why);
 }
 
 }  // namespace
@@ -29,6 +35,7 @@ void validate(const DaemonConfig& config) {
     check_topic(stream.topic, path + ".topic");
     if (!topics.insert(stream.topic).second)
       throw ConfigError(path + ".topic: '" + stream.topic + "' is used by another stream");
+    if (!stream.sensor_frame.empty()) check_frame(stream.sensor_frame, path + ".sensor_frame");
     try {
       validate(stream.tracker);
     } catch (const ConfigError& e) {
@@ -41,7 +48,20 @@ void validate(const DaemonConfig& config) {
   check_topic(config.outputs.odom_suffix, "outputs.odom_suffix");
   check_topic(config.outputs.map_patches_topic, "outputs.map_patches_topic");
   check_topic(config.outputs.status_topic, "outputs.status_topic");
-  if (config.outputs.odom_frame.empty()) throw ConfigError("outputs.odom_frame: must not be empty");
+  const OutputsConfig& out = config.outputs;
+  check_frame(out.odom_frame, "outputs.odom_frame");
+  check_frame(out.base_frame, "outputs.base_frame");
+  check_frame(out.sensor_frame, "outputs.sensor_frame");
+  if (out.odom_frame == out.base_frame)
+    throw ConfigError("outputs.base_frame: equals outputs.odom_frame ('" + out.odom_frame + "')");
+  if (!out.frame_prefix && (config.streams.size() > 1 || config.discovery.enabled))
+    throw ConfigError(
+        "outputs.frame_prefix: false needs exactly one configured stream and no discovery "
+        "(the streams' frames would have the same names)");
+  check_topic(out.tf_topic, "outputs.tf_topic");
+  check_topic(out.tf_static_topic, "outputs.tf_static_topic");
+  if (out.tf_topic == out.tf_static_topic)
+    throw ConfigError("outputs.tf_static_topic: equals outputs.tf_topic");
   const auto& levels = service::kLogLevels;
   if (std::find(levels.begin(), levels.end(), std::string_view(config.log_level)) == levels.end())
     throw ConfigError("log_level: '" + config.log_level + "' is not a log level");

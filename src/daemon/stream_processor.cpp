@@ -36,6 +36,7 @@ void StreamProcessor::process(Frame& frame) {
   // without is registered as it is. Invalid times throw and the frame counts as failed.
   // Stamps of a stream increase (PointsListener drops the others) except after a publisher
   // restarts: the tracker's clock restarts with it.
+  const std::optional<Stamp> previous_stamp = last_stamp_;
   if (last_stamp_ && !(*last_stamp_ < frame.stamp)) tracker_->restart_clock();
   last_stamp_ = frame.stamp;
   const double cpu_before = thread_cpu_seconds();
@@ -49,8 +50,15 @@ void StreamProcessor::process(Frame& frame) {
   const Matrix6d covariance = has_extrinsic_
                                   ? transform_left_covariance(result.covariance, config_.extrinsic)
                                   : result.covariance;
+  std::optional<TwistEstimate> twist;
+  if (result.registered && last_pose_ && previous_stamp && *previous_stamp < frame.stamp) {
+    const double seconds =
+        static_cast<double>(frame.stamp.nanoseconds - previous_stamp->nanoseconds) * 1e-9;
+    twist = twist_between(*last_pose_, pose, covariance, seconds);
+  }
+  last_pose_ = pose;
   sink_.publish_odometry(OdometryOutput{config_.id, frame.stamp, pose, covariance, result.keyframe,
-                                        result.registered, frame.sequence});
+                                        result.registered, frame.sequence, twist});
   if (result.keyframe) {
     sink_.publish_keyframe(make_keyframe(*tracker_, result, KeyframeKey{config_.id, keyframes_},
                                          frame.stamp, config_.extrinsic));

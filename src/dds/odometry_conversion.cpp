@@ -62,15 +62,34 @@ Matrix6d left_covariance_from_ros(const std::array<double, 36>& ros_covariance,
   return 0.5 * (left + left.transpose());
 }
 
+std::array<double, 36> ros_twist_covariance(const Matrix6d& angular_linear_covariance) {
+  Matrix6d p = Matrix6d::Zero();  // (angular, linear) -> (linear, angular)
+  p.block<3, 3>(0, 3) = Eigen::Matrix3d::Identity();
+  p.block<3, 3>(3, 0) = Eigen::Matrix3d::Identity();
+  return to_row_major(p * angular_linear_covariance * p.transpose());
+}
+
 nav_msgs::msg::Odometry to_odometry(const Eigen::Isometry3d& pose, const Matrix6d& left_covariance,
                                     Stamp stamp, const std::string& frame_id,
-                                    const std::string& child_frame_id) {
+                                    const std::string& child_frame_id,
+                                    const std::optional<TwistEstimate>& twist) {
   nav_msgs::msg::Odometry msg;
   msg.header().stamp(to_time(stamp));
   msg.header().frame_id(frame_id);
   msg.child_frame_id(child_frame_id);
   msg.pose().pose(to_pose_msg(pose));
   msg.pose().covariance(ros_pose_covariance(left_covariance, pose));
+  if (twist) {
+    auto& t = msg.twist().twist();
+    t.linear().x(twist->twist.linear.x());
+    t.linear().y(twist->twist.linear.y());
+    t.linear().z(twist->twist.linear.z());
+    t.angular().x(twist->twist.angular.x());
+    t.angular().y(twist->twist.angular.y());
+    t.angular().z(twist->twist.angular.z());
+    msg.twist().covariance(ros_twist_covariance(twist->covariance));
+    return msg;
+  }
   std::array<double, 36> twist_cov{};
   for (std::size_t i = 0; i < 6; ++i) twist_cov[7 * i] = -1.0;
   msg.twist().covariance(twist_cov);

@@ -90,6 +90,34 @@ fdds::DataReaderQos map_patches_reader_qos() {
   return qos;
 }
 
+fdds::DataWriterQos tf_writer_qos(std::int32_t depth) {
+  fdds::DataWriterQos qos = fdds::DATAWRITER_QOS_DEFAULT;
+  common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::VOLATILE_DURABILITY_QOS,
+         fdds::KEEP_LAST_HISTORY_QOS, depth);
+  return qos;
+}
+
+fdds::DataReaderQos tf_reader_qos(std::int32_t depth) {
+  fdds::DataReaderQos qos = fdds::DATAREADER_QOS_DEFAULT;
+  common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::VOLATILE_DURABILITY_QOS,
+         fdds::KEEP_LAST_HISTORY_QOS, depth);
+  return qos;
+}
+
+fdds::DataWriterQos tf_static_writer_qos() {
+  fdds::DataWriterQos qos = fdds::DATAWRITER_QOS_DEFAULT;
+  common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::TRANSIENT_LOCAL_DURABILITY_QOS,
+         fdds::KEEP_LAST_HISTORY_QOS, 1);
+  return qos;
+}
+
+fdds::DataReaderQos tf_static_reader_qos() {
+  fdds::DataReaderQos qos = fdds::DATAREADER_QOS_DEFAULT;
+  common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::TRANSIENT_LOCAL_DURABILITY_QOS,
+         fdds::KEEP_LAST_HISTORY_QOS, 1);
+  return qos;
+}
+
 fdds::DataWriterQos status_writer_qos(std::int32_t depth) {
   fdds::DataWriterQos qos = fdds::DATAWRITER_QOS_DEFAULT;
   common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::VOLATILE_DURABILITY_QOS,

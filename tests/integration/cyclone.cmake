@@ -13,7 +13,8 @@ find_program(LITAMIN2_CYCLONE_IDLC idlc)
 if(NOT CycloneDDS_FOUND OR NOT LITAMIN2_CYCLONE_IDLC)
   message(STATUS "Cyclone DDS (cyclonedds-dev, cyclonedds-tools) not found: "
                  "no integration_cyclone_interop test")
-elseif(TARGET litamin2d AND TARGET litamin2-sim AND TARGET litamin2-odometry)
+elseif(TARGET litamin2d AND TARGET litamin2-sim AND TARGET litamin2-odometry AND
+       TARGET litamin2-aggregator)
   # idlc generates C; the project itself is C++ only.
   enable_language(C)
   set(cyclone_dir ${CMAKE_CURRENT_LIST_DIR}/cyclone_client)
@@ -24,7 +25,8 @@ elseif(TARGET litamin2d AND TARGET litamin2-sim AND TARGET litamin2-odometry)
     sensor_msgs/msg/PointField sensor_msgs/msg/PointCloud2
     geometry_msgs/msg/Point geometry_msgs/msg/Quaternion geometry_msgs/msg/Pose
     geometry_msgs/msg/PoseWithCovariance geometry_msgs/msg/Vector3 geometry_msgs/msg/Twist
-    geometry_msgs/msg/TwistWithCovariance nav_msgs/msg/Odometry)
+    geometry_msgs/msg/TwistWithCovariance nav_msgs/msg/Odometry
+    geometry_msgs/msg/Transform geometry_msgs/msg/TransformStamped tf2_msgs/msg/TFMessage)
 
   set(cyclone_idl_copies "")
   foreach(type ${cyclone_types})
@@ -74,4 +76,17 @@ elseif(TARGET litamin2d AND TARGET litamin2-sim AND TARGET litamin2-odometry)
       $<TARGET_FILE:cyclone_client> ${CMAKE_CURRENT_LIST_DIR}/cyclone_loopback.xml
       ${CMAKE_CURRENT_BINARY_DIR}/cyclone_interop)
   set_tests_properties(integration_cyclone_interop PROPERTIES TIMEOUT 600 RUN_SERIAL TRUE)
+
+  # rt/tf and rt/tf_static as a ROS 2 node reads them: cyclone_tf_reader (Cyclone only) checks
+  # every odom -> base_link transform against the odometry of the same stamp, bit for bit, and a
+  # late reader of the transient-local rt/tf_static gets base_link -> sensor (the extrinsic);
+  # litamin2-aggregator's map -> <stream>/odom arrive at odometry stamps.
+  add_executable(cyclone_tf_reader ${CMAKE_CURRENT_LIST_DIR}/cyclone_tf_reader/main.cpp)
+  target_link_libraries(cyclone_tf_reader PRIVATE litamin2_cyclone_types CLI11::CLI11)
+  add_test(NAME integration_cyclone_tf
+    COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/cyclone_tf.sh
+      $<TARGET_FILE:litamin2d> $<TARGET_FILE:litamin2-aggregator> $<TARGET_FILE:litamin2-sim>
+      $<TARGET_FILE:cyclone_client> $<TARGET_FILE:cyclone_tf_reader> ${CMAKE_CURRENT_LIST_DIR}/cyclone_loopback.xml
+      ${CMAKE_CURRENT_BINARY_DIR}/cyclone_tf)
+  set_tests_properties(integration_cyclone_tf PROPERTIES TIMEOUT 600 RUN_SERIAL TRUE)
 endif()

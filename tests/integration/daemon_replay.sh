@@ -75,9 +75,10 @@ tail -n 5 daemon.log
 [ "$daemon_status" -eq 0 ] || exit 1
 [ "$ms" -lt 2000 ] || exit 1
 
-echo "== discovery: a daemon on the shipped default's settings finds rt/car_c/points by itself"
-sed -e 's/domain: 0/domain: 18/' "$source_dir/config/litamin2d.yaml" > discovery.yaml
-"$tools/litamin2d/litamin2d" --config discovery.yaml > daemon_discovery.log 2>&1 &
+echo "== discovery: a daemon on the shipped default finds rt/car_c/points by itself"
+# The shipped file sets no dds.domain: ROS_DOMAIN_ID chooses it, as for a ROS 2 node.
+ROS_DOMAIN_ID=18 "$tools/litamin2d/litamin2d" --config "$source_dir/config/litamin2d.yaml" \
+  > daemon_discovery.log 2>&1 &
 daemon_pid=$!
 rm -f probe.ready
 "$build/tests/integration/daemon_probe" --domain 18 --expect $frames --timeout 300 \
@@ -95,6 +96,8 @@ daemon_status=0
 wait $daemon_pid || daemon_status=$?
 daemon_pid=
 grep -q "stream car_c: reading rt/car_c/points" daemon_discovery.log || { cat daemon_discovery.log; exit 1; }
+grep -q "DDS participant up: domain 18 (ROS_DOMAIN_ID)" daemon_discovery.log ||
+  { echo "ROS_DOMAIN_ID not used"; cat daemon_discovery.log; exit 1; }
 [ "$probe_status" -eq 0 ] || { echo "discovery probe failed"; cat daemon_discovery.log; exit 1; }
 [ "$daemon_status" -eq 0 ] || exit 1
 echo PASS

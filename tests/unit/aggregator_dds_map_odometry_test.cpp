@@ -7,6 +7,7 @@
 #include "litamin2/aggregator/dds/map_odometry_relay.hpp"
 #include "litamin2/dds/odometry_conversion.hpp"
 #include "litamin2/dds/pose_conversion.hpp"
+#include "litamin2/dds/transform_conversion.hpp"
 
 #include <gtest/gtest.h>
 
@@ -136,4 +137,91 @@ TEST(AggregatorMapOdometryRelay, PublishesFromItsThreadAndDrainsOnStop) {
   relay.stop();
   EXPECT_EQ(published.load(), 1);
   EXPECT_EQ(relay.status().at("car").published, 1u);
+}
+
+TEST(AggregatorMapOdometry, MapTransformIsTheCorrectionFromMapToTheOdometryFrame) {
+  const Matrix6d zero = Matrix6d::Zero();
+  const MapCorrection c{pose_of(4, -2, 0.5, 0.3), "map"};
+  const nav_msgs::msg::Odometry odom = odometry_at(pose_of(3, 1, 0, 0.1), zero);
+  const auto tf = to_map_transform(odom, c);
+  ASSERT_TRUE(tf);
+  EXPECT_EQ(tf->header().frame_id(), "map");
+  EXPECT_EQ(tf->child_frame_id(), "odom");  // the odometry's frame_id
+  EXPECT_EQ(tf->header().stamp().sec(), odom.header().stamp().sec());
+  EXPECT_EQ(tf->header().stamp().nanosec(), odom.header().stamp().nanosec());
+  // map -> odom composed with odom -> base is the map-frame pose the relay publishes.
+  const Eigen::Isometry3d composed =
+      dds::from_transform_msg(tf->transform()) * dds::from_pose_msg(odom.pose().pose());
+  const Eigen::Isometry3d in_map = dds::from_pose_msg(to_map_odometry(odom, c).pose().pose());
+  EXPECT_TRUE(composed.isApprox(in_map, 1e-12));
+  EXPECT_LT(
+      (dds::from_transform_msg(tf->transform()).translation() - Eigen::Vector3d(4, -2, 0.5)).norm(),
+      1e-12);
+  // A stream that is its own group's anchor (frame "<anchor>/odom" = its odometry frame): no
+  // transform of a frame to itself.
+  EXPECT_FALSE(to_map_transform(odom, MapCorrection{Eigen::Isometry3d::Identity(), "odom"}));
+}
+
+TEST(AggregatorMapOdometryRelay, PublishesTheMapTransformWithEachPose) {
+  MapOdometryRelay relay;
+  std::vector<nav_msgs::msg::Odometry> published;
+  std::vector<geometry_msgs::msg::TransformStamped> transforms;
+  relay.add_stream(
+      "car", [&](const nav_msgs::msg::Odometry& m) { published.push_back(m); },
+      [&](const geometry_msgs::msg::TransformStamped& t) { transforms.push_back(t); });
+  relay.offer("car", odometry_at(pose_of(1, 0, 0, 0), Matrix6d::Zero()));
+  relay.flush();
+  EXPECT_TRUE(transforms.empty());  // no correction yet
+  relay.set_correction("car", {pose_of(0, 10, 0, 0), "map"});
+  relay.offer("car", odometry_at(pose_of(2, 0, 0, 0), Matrix6d::Zero()));
+  relay.flush();
+  relay.set_correction("car", {pose_of(0, 11, 0, 0), "map"});
+  relay.offer("car", odometry_at(pose_of(3, 0, 0, 0), Matrix6d::Zero()));
+  relay.flush();
+  ASSERT_EQ(published.size(), 2u);
+  ASSERT_EQ(transforms.size(), 2u);
+  EXPECT_DOUBLE_EQ(transforms[0].transform().translation().y(), 10.0);
+  EXPECT_DOUBLE_EQ(transforms[1].transform().translation().y(), 11.0);  // the new correction
+  EXPECT_EQ(transforms[1].header().frame_id(), "map");
+}
+
+TEST(AggregatorMapOdometryRelay, AChangedCorrectionSendsItsTransformWithoutANewPose) {
+  MapOdometryRelay relay;
+  int poses = 0;
+  std::vector<geometry_msgs::msg::TransformStamped> transforms;
+  relay.add_stream(
+      "car", [&](const nav_msgs::msg::Odometry&) { ++poses; },
+      [&](const geometry_msgs::msg::TransformStamped& t) { transforms.push_back(t); });
+  // The stream's odometry stopped before its first keyframe reached the mapper.
+  relay.offer("car", odometry_at(pose_of(1, 0, 0, 0), Matrix6d::Zero()));
+  relay.flush();
+  relay.set_correction("car", {pose_of(0, 10, 0, 0), "map"});
+  relay.flush();
+  ASSERT_EQ(transforms.size(), 1u);
+  EXPECT_EQ(poses, 0);  // map_odom waits for a pose; the transform does not
+  EXPECT_DOUBLE_EQ(transforms[0].transform().translation().y(), 10.0);
+  EXPECT_EQ(transforms[0].header().stamp().sec(), 12);  // the latest odometry's stamp
+  EXPECT_EQ(transforms[0].header().stamp().nanosec(), 500000000u);
+  EXPECT_EQ(transforms[0].child_frame_id(), "odom");
+  // The same correction again (poses republished for other keyframes): nothing new.
+  relay.set_correction("car", {pose_of(0, 10, 0, 0), "map"});
+  relay.flush();
+  EXPECT_EQ(transforms.size(), 1u);
+  // A loop moved it, still without a new pose: not at the same stamp again (tf2 ignores a
+  // repeated stamp); the next pose carries it.
+  relay.set_correction("car", {pose_of(0, 10.5, 0, 0), "map"});
+  relay.flush();
+  EXPECT_EQ(transforms.size(), 1u);
+  nav_msgs::msg::Odometry later = odometry_at(pose_of(2, 0, 0, 0), Matrix6d::Zero());
+  later.header().stamp().sec(13);
+  relay.offer("car", later);
+  relay.flush();
+  ASSERT_EQ(transforms.size(), 2u);
+  EXPECT_DOUBLE_EQ(transforms[1].transform().translation().y(), 10.5);
+  EXPECT_EQ(transforms[1].header().stamp().sec(), 13);
+  // Moved again after that pose: sent at once, at the latest stamp (13) only if unused: not.
+  relay.set_correction("car", {pose_of(0, 11, 0, 0), "map"});
+  relay.flush();
+  EXPECT_EQ(transforms.size(), 2u);
+  EXPECT_EQ(poses, 1);
 }

@@ -124,3 +124,16 @@ TEST(AggregatorConfig, OdometryTopicPatterns) {
   expect_error("topics: {map_odometry: 'rt/*/*/pose'}", "topics.map_odometry");
   expect_error("topics: {odometry: 'rt/*/x', map_odometry: 'rt/*/x'}", "must be different");
 }
+
+TEST(AggregatorConfig, TfAndMapCloudTopics) {
+  const AggregatorConfig d = aggregator_config_from_yaml(YAML::Node());
+  EXPECT_EQ(d.topics.tf, "rt/tf");
+  EXPECT_TRUE(d.topics.map_cloud.empty());  // off unless named
+  const AggregatorConfig c =
+      aggregator_config_from_yaml(YAML::Load("topics: {tf: '', map_cloud: rt/litamin2/map_cloud}"));
+  EXPECT_TRUE(c.topics.tf.empty());
+  EXPECT_EQ(c.topics.map_cloud, "rt/litamin2/map_cloud");
+  expect_error("topics: {tf: 'rt/a b'}", "topics.tf");
+  expect_error("topics: {tf: rt/litamin2/map_summary}", "topics.tf: 'rt/litamin2/map_summary' is");
+  expect_error("topics: {map_cloud: rt/tf}", "topics.map_cloud: 'rt/tf' is another topic's");
+}

@@ -2,10 +2,12 @@
 // validation errors that name the key and the value.
 
 #include "litamin2/config/daemon_config_yaml.hpp"
+#include "litamin2/daemon/stream_frames.hpp"
 
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
+#include <cstdlib>
 #include <fstream>
 
 using namespace litamin2;
@@ -219,4 +221,94 @@ TEST(DaemonConfig, FileErrorsStartWithTheFileName) {
   EXPECT_THROW(load_daemon_config("/nonexistent/litamin2d.yaml"), ConfigError);
   std::ofstream(path) << "discovery: [unclosed\n";
   EXPECT_THROW(load_daemon_config(path), ConfigError);
+}
+
+namespace {
+
+/// Sets ROS_DOMAIN_ID (or unsets it for nullptr) for one scope.
+class RosDomainId {
+ public:
+  explicit RosDomainId(const char* value) {
+    if (value)
+      setenv("ROS_DOMAIN_ID", value, 1);
+    else
+      unsetenv("ROS_DOMAIN_ID");
+  }
+  ~RosDomainId() { unsetenv("ROS_DOMAIN_ID"); }
+};
+
+}  // namespace
+
+TEST(DaemonConfig, RosDomainIdWhenTheConfigSetsNoDomain) {
+  const std::string no_domain = "dds: {profile: loopback}\nstreams: [{id: car1}]\n";
+  const std::string domain_7 = "dds: {domain: 7}\nstreams: [{id: car1}]\n";
+  {
+    RosDomainId env(nullptr);
+    EXPECT_EQ(parse(no_domain).dds.domain, 0);
+    EXPECT_EQ(parse(no_domain).dds.domain_source, service::DomainSource::kDefault);
+  }
+  {
+    RosDomainId env("42");
+    EXPECT_EQ(parse(no_domain).dds.domain, 42);
+    EXPECT_EQ(parse(no_domain).dds.domain_source, service::DomainSource::kEnvironment);
+    // A section-less config too; the config's own domain wins.
+    EXPECT_EQ(parse("streams: [{id: car1}]\n").dds.domain, 42);
+    EXPECT_EQ(parse(domain_7).dds.domain, 7);
+    EXPECT_EQ(parse(domain_7).dds.domain_source, service::DomainSource::kConfig);
+  }
+  {
+    RosDomainId env("");  // ROS 2 treats an empty value as unset
+    EXPECT_EQ(parse(no_domain).dds.domain, 0);
+  }
+  for (const char* bad : {"233", "-1", "4x", " 5", "1e2", "0x10", "99999999999"}) {
+    RosDomainId env(bad);
+    const std::string e = error_of(no_domain);
+    EXPECT_NE(e.find("ROS_DOMAIN_ID: '" + std::string(bad) + "' is not a DDS domain id"),
+              std::string::npos)
+        << bad << ": " << e;
+    // Not read when the config sets the domain.
+    EXPECT_EQ(parse(domain_7).dds.domain, 7) << bad;
+  }
+}
+
+TEST(DaemonConfig, FrameNamesAndTheStreamPrefix) {
+  const DaemonConfig d = parse("streams: [{id: car1}, {id: car2, sensor_frame: os_sensor}]\n");
+  EXPECT_EQ(d.outputs.odom_frame, "odom");
+  EXPECT_EQ(d.outputs.base_frame, "base_link");
+  EXPECT_TRUE(d.outputs.publish_tf);
+  EXPECT_EQ(d.outputs.tf_topic, "rt/tf");
+  EXPECT_EQ(d.outputs.tf_static_topic, "rt/tf_static");
+  const StreamFrames car1 = stream_frames(d.outputs, d.streams[0]);
+  EXPECT_EQ(car1.odom, "car1/odom");
+  EXPECT_EQ(car1.base, "car1/base_link");
+  EXPECT_EQ(car1.sensor, "car1/lidar");
+  EXPECT_EQ(stream_frames(d.outputs, d.streams[1]).sensor, "os_sensor");  // verbatim
+
+  const DaemonConfig plain = parse(R"(
+streams: [{id: car1}]
+outputs: {frame_prefix: false, odom_frame: odom_lidar, base_frame: base_footprint}
+)");
+  const StreamFrames f = stream_frames(plain.outputs, plain.streams[0]);
+  EXPECT_EQ(f.odom, "odom_lidar");
+  EXPECT_EQ(f.base, "base_footprint");
+  EXPECT_EQ(f.sensor, "lidar");
+
+  EXPECT_NE(error_of("streams: [{id: a}, {id: b}]\noutputs: {frame_prefix: false}\n")
+                .find("outputs.frame_prefix: false needs exactly one configured stream"),
+            std::string::npos);
+  EXPECT_NE(error_of("discovery: {enabled: true}\noutputs: {frame_prefix: false}\n")
+                .find("outputs.frame_prefix"),
+            std::string::npos);
+  EXPECT_NE(error_of("streams: [{id: a}]\noutputs: {base_frame: /base_link}\n")
+                .find("outputs.base_frame: '/base_link' is not a frame name: must not start"),
+            std::string::npos);
+  EXPECT_NE(error_of("streams: [{id: a, sensor_frame: 'my lidar'}]\n")
+                .find("streams[0].sensor_frame: 'my lidar' is not a frame name"),
+            std::string::npos);
+  EXPECT_NE(error_of("streams: [{id: a}]\noutputs: {odom_frame: x, base_frame: x}\n")
+                .find("outputs.base_frame: equals outputs.odom_frame"),
+            std::string::npos);
+  EXPECT_NE(error_of("streams: [{id: a}]\noutputs: {tf_static_topic: rt/tf}\n")
+                .find("outputs.tf_static_topic: equals outputs.tf_topic"),
+            std::string::npos);
 }

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <optional>
 #include <vector>
 
 using namespace litamin2;
@@ -21,12 +22,15 @@ struct Recorded {
   bool keyframe;
   std::uint64_t sequence;
   Stamp stamp;
+  std::optional<TwistEstimate> twist;
+  bool registered;
 };
 
 class RecordingSink : public ResultSink {
  public:
   void publish_odometry(const OdometryOutput& o) override {
-    odometry.push_back({o.stream, o.pose, o.covariance, o.keyframe, o.sequence, o.stamp});
+    odometry.push_back(
+        {o.stream, o.pose, o.covariance, o.keyframe, o.sequence, o.stamp, o.twist, o.registered});
   }
   void publish_keyframe(const Keyframe& k) override {
     keyframe_ids.push_back(k.key.id);
@@ -153,4 +157,49 @@ TEST(StreamProcessor, DeskewingStreamUsesTheStampsAndSurvivesAPublisherRestart) 
         << i;
   }
   EXPECT_TRUE(differs) << "the per-point times did not reach the tracker";
+}
+
+TEST(StreamProcessor, TwistIsTheBodyVelocityOfTheKnownMotion) {
+  // scans(): per frame (1 s apart) the sensor turns 0.01 rad about z and moves (0.6, 0.05, 0)
+  // in the first frame's axes; with an extrinsic the base's twist is published, in its frame.
+  const std::vector<PointCloud> input = scans(5);
+  StreamConfig config;
+  config.id = "car3";
+  config.extrinsic.translation() = Eigen::Vector3d(1.0, 0.0, 1.5);
+  config.extrinsic.linear() = Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  RecordingSink sink;
+  StreamStats stats;
+  StreamProcessor processor(config, sink, stats);
+  auto truth = [](int i) {
+    Eigen::Isometry3d sensor = Eigen::Isometry3d::Identity();
+    sensor.translation() = Eigen::Vector3d(0.6 * i, 0.05 * i, 0.0);
+    sensor.linear() = Eigen::AngleAxisd(0.01 * i, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    return sensor;
+  };
+  for (std::size_t i = 0; i < input.size(); ++i) {
+    Frame f = frame_of(input[i], i);
+    processor.process(f);
+  }
+  ASSERT_EQ(sink.odometry.size(), input.size());
+  EXPECT_FALSE(sink.odometry[0].twist) << "no twist without a previous frame";
+  for (std::size_t i = 1; i < input.size(); ++i) {
+    const Recorded& r = sink.odometry[i];
+    ASSERT_TRUE(r.registered) << i;
+    ASSERT_TRUE(r.twist) << i;
+    // Exactly the twist between the published poses over the stamps' interval (1 s) ...
+    const TwistEstimate expected =
+        twist_between(sink.odometry[i - 1].pose, r.pose, r.covariance, 1.0);
+    EXPECT_EQ(r.twist->twist.linear, expected.twist.linear);
+    EXPECT_EQ(r.twist->twist.angular, expected.twist.angular);
+    EXPECT_TRUE(r.twist->covariance.isApprox(expected.covariance, 0.0));
+    // ... which is the base's true body velocity, to the registration's accuracy.
+    const Eigen::Isometry3d motion =
+        base_pose(truth(static_cast<int>(i) - 1), config.extrinsic).inverse() *
+        base_pose(truth(static_cast<int>(i)), config.extrinsic);
+    const Twist true_twist = twist_from_motion(motion, 1.0);
+    EXPECT_LT((r.twist->twist.linear - true_twist.linear).norm(), 0.02) << i;
+    EXPECT_LT((r.twist->twist.angular - true_twist.angular).norm(), 2e-3) << i;
+    // A registered frame has a covariance, hence a positive twist variance on every axis.
+    for (int k = 0; k < 6; ++k) EXPECT_GT(r.twist->covariance(k, k), 0.0) << i << " " << k;
+  }
 }

@@ -128,6 +128,36 @@ TEST(DdsOdometry, MessageRoundTrip) {
   EXPECT_DOUBLE_EQ(sample.ros_covariance(5, 0), msg.pose().covariance()[30]);
 }
 
+TEST(DdsOdometry, TwistGoesInLinearFirstWithItsCovariance) {
+  // The twist of a known motion (0.1 s at 8 m/s forward, 0.4 rad/s yaw) in the child frame.
+  Twist body;
+  body.linear = Eigen::Vector3d(8.0, 0.3, -0.1);
+  body.angular = Eigen::Vector3d(0.02, -0.01, 0.4);
+  const Eigen::Isometry3d previous = some_pose();
+  const Eigen::Isometry3d pose = previous * motion_after(body, 0.1);
+  const TwistEstimate twist = twist_between(previous, pose, random_covariance(13), 0.1);
+  const auto msg = to_odometry(pose, random_covariance(13), Stamp::from_seconds(10.0), "odom",
+                               "base_link", twist);
+  const auto& t = msg.twist().twist();
+  EXPECT_NEAR(t.linear().x(), 8.0, 1e-9);
+  EXPECT_NEAR(t.linear().y(), 0.3, 1e-9);
+  EXPECT_NEAR(t.linear().z(), -0.1, 1e-9);
+  EXPECT_NEAR(t.angular().x(), 0.02, 1e-9);
+  EXPECT_NEAR(t.angular().y(), -0.01, 1e-9);
+  EXPECT_NEAR(t.angular().z(), 0.4, 1e-9);
+  // ROS order (vx, vy, vz, wx, wy, wz): the estimate's (angular, linear) blocks swapped.
+  const auto& cov = msg.twist().covariance();
+  for (int r = 0; r < 6; ++r) {
+    for (int c = 0; c < 6; ++c) {
+      EXPECT_EQ(cov[static_cast<std::size_t>(6 * r + c)],
+                twist.covariance((r + 3) % 6, (c + 3) % 6))
+          << r << "," << c;
+    }
+  }
+  for (int i = 0; i < 6; ++i) EXPECT_GT(cov[static_cast<std::size_t>(7 * i)], 0.0) << i;
+  EXPECT_TRUE(from_odometry(msg).ok());
+}
+
 TEST(DdsOdometry, ZeroCovarianceStaysZero) {
   const auto msg = to_odometry(some_pose(), Matrix6d::Zero(), Stamp{}, "odom", "base");
   for (double v : msg.pose().covariance()) EXPECT_EQ(v, 0.0);

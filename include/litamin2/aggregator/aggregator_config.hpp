@@ -32,6 +32,15 @@ struct TopicsConfig {
   /// Output: each stream's current pose in the map frame (nav_msgs/Odometry, frame_id "map",
   /// child_frame_id as in its odometry), a pattern like `odometry`.
   std::string map_odometry = "rt/*/map_odom";
+  /// Output: each stream's map -> odom transform (tf2_msgs/TFMessage, parent "map", child the
+  /// odometry's frame_id) when its correction changes and with each map-frame pose. Empty:
+  /// none.
+  std::string tf = "rt/tf";
+  /// Output: the global map as sensor_msgs/PointCloud2 in frame "map" (map_cloud.hpp: x, y, z
+  /// of every fused distribution's mean and its point count), sent whole when tiles changed,
+  /// at most every publish.tiles_period_s; transient-local, so a late viewer gets the latest.
+  /// Empty (the default): none.
+  std::string map_cloud;
 };
 
 struct StoreConfig {

@@ -15,6 +15,8 @@ namespace litamin2::service {
 
 /// Reads a `dds:` section (a null node gives the defaults); errors name keys as dds.<key>. An
 /// xml profile needs a readable xml_file and an xml_profile; other profiles take neither.
+/// Without a `domain` key the domain is ROS_DOMAIN_ID's (as a ROS 2 node's), else 0; an
+/// invalid ROS_DOMAIN_ID is then a ConfigError naming it (it is not read when the key is set).
 TransportConfig transport_config_from_yaml(const YAML::Node& node);
 
 /// Reads a `security:` section (a null node: security off); errors name keys as security.<key>.

@@ -24,6 +24,9 @@ struct StreamConfig {
   Eigen::Isometry3d extrinsic = Eigen::Isometry3d::Identity();
   /// The global tracker section with this stream's overrides merged over it.
   TrackerConfig tracker;
+  /// The sensor's frame, used verbatim (e.g. the frame_id the driver puts in its PointCloud2
+  /// headers, so that rviz2 places the scans); empty: outputs.sensor_frame with the stream rule.
+  std::string sensor_frame;
 };
 
 /// The daemon's tracker defaults: TrackerConfig's, with deskew on (live drivers publish per-point
@@ -53,8 +56,21 @@ struct OutputsConfig {
   /// about 40 KB each at 3 m voxels, so 500 are ~20 MB per stream and, at a keyframe every
   /// 2 m and 10 m/s, the last 100 s of driving.
   int map_patch_history = 500;
-  /// frame_id of published odometry headers; child_frame_id is "<stream>/base_link".
+  /// Frame names (REP-105 defaults). A stream's frames are "<stream>/<name>" with
+  /// frame_prefix (stream_frames.hpp): its odometry header and rt/tf parent "<stream>/odom",
+  /// the child "<stream>/base_link", the sensor (rt/tf_static child of base_link, the
+  /// extrinsic) "<stream>/lidar" unless the stream names its own sensor_frame.
   std::string odom_frame = "odom";
+  std::string base_frame = "base_link";
+  std::string sensor_frame = "lidar";
+  /// false: the names as given, without the stream prefix (one configured stream only, no
+  /// discovery: two streams' frames would collide).
+  bool frame_prefix = true;
+  /// Publish tf2_msgs/TFMessage: odom -> base per pose on tf_topic, base -> sensor (static) on
+  /// tf_static_topic (transient-local, as ROS 2's static broadcaster).
+  bool publish_tf = true;
+  std::string tf_topic = "rt/tf";
+  std::string tf_static_topic = "rt/tf_static";
 };
 
 /// Bounds on what a client may send (docs/security.md, "Validation").
@@ -90,7 +106,9 @@ struct DaemonConfig {
 /// Throws ConfigError naming the key (as a dotted path) on the first invalid value: stream ids
 /// that are not valid (service::stream_id_error) or duplicate, topics that are not valid topic
 /// names or used twice, a discovery pattern without exactly one '*', an empty odometry frame,
-/// an unknown log level, neither streams nor discovery, and invalid tracker sections.
+/// an unknown log level, neither streams nor discovery, and invalid tracker sections; frame
+/// names that are empty, start with '/' or hold whitespace (tf2 refuses them), equal odom and
+/// base frames, and frame_prefix false with more than one stream or with discovery.
 void validate(const DaemonConfig& config);
 
 /// A stream for a discovered topic: id from the pattern, the global tracker, no extrinsic.

@@ -1,12 +1,14 @@
 #pragma once
 /// Where a stream's results go: the DDS writers in the daemon, a recorder in tests.
 
+#include "litamin2/core/frame_twist.hpp"
 #include "litamin2/core/keyframe.hpp"
 #include "litamin2/core/so3.hpp"
 #include "litamin2/core/stamp.hpp"
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace litamin2::daemon {
@@ -25,6 +27,10 @@ struct OdometryOutput {
   bool registered = false;
   /// The frame's per-stream sequence number.
   std::uint64_t sequence = 0;
+  /// The base's twist from the previous frame's pose to `pose`, in the base frame, with its
+  /// covariance (core/frame_twist.hpp); absent for the first frame, a frame not registered
+  /// (its pose is the prediction, not a measurement), and a stamp not after the previous one.
+  std::optional<TwistEstimate> twist;
 };
 
 class ResultSink {

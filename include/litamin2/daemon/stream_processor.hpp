@@ -1,7 +1,8 @@
 #pragma once
 /// The per-frame work of one stream: run its tracker on the scan, move the pose to the base
 /// frame by the sensor extrinsic, publish odometry (and the keyframe's distributions) through
-/// a ResultSink, and record the statistics. Used as the stream's StreamScheduler::Processor.
+/// a ResultSink with the twist since the previous frame (core/frame_twist.hpp) when the frame
+/// was registered, and record the statistics. Used as the stream's StreamScheduler::Processor.
 
 #include "litamin2/core/tracker.hpp"
 #include "litamin2/daemon/daemon_config.hpp"
@@ -37,6 +38,8 @@ class StreamProcessor {
   std::uint64_t keyframes_ = 0;
   /// The last frame's stamp (deskew's clock, Tracker::restart_clock).
   std::optional<Stamp> last_stamp_;
+  /// The last frame's published (base) pose, for the twist.
+  std::optional<Eigen::Isometry3d> last_pose_;
 };
 
 /// The pose of the base in the odometry frame (the base at the first scan) from the sensor's

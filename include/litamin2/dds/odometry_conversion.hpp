@@ -12,12 +12,14 @@
 /// (translation first) and the rotation uncertainty's lever arm about the origin is added to
 /// the position part. At t = 0 this is exactly the block reordering.
 
+#include "litamin2/core/frame_twist.hpp"
 #include "litamin2/core/so3.hpp"
 #include "litamin2/core/stamp.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <optional>
 #include <string>
 
 #include "nav_msgs/msg/Odometry.h"
@@ -34,12 +36,18 @@ Matrix6d ros_covariance_matrix(const std::array<double, 36>& ros_covariance);
 Matrix6d left_covariance_from_ros(const std::array<double, 36>& ros_covariance,
                                   const Eigen::Isometry3d& pose);
 
+/// ROS twist covariance (row-major over (vx, vy, vz, wx, wy, wz), linear first) of a
+/// covariance over (angular, linear) (TwistEstimate::covariance): the blocks swapped.
+std::array<double, 36> ros_twist_covariance(const Matrix6d& angular_linear_covariance);
+
 /// Builds an Odometry message: header (stamp, frame_id), child_frame_id, pose, pose
-/// covariance converted by ros_pose_covariance; twist zero with covariance diagonal -1
-/// (ROS's "unknown") unless filled in by the caller.
+/// covariance converted by ros_pose_covariance; the twist (in the child frame, as ROS defines
+/// it) and its covariance (ros_twist_covariance) from `twist`, or, without one, zero with
+/// covariance diagonal -1 (ROS's "unknown").
 nav_msgs::msg::Odometry to_odometry(const Eigen::Isometry3d& pose, const Matrix6d& left_covariance,
                                     Stamp stamp, const std::string& frame_id,
-                                    const std::string& child_frame_id);
+                                    const std::string& child_frame_id,
+                                    const std::optional<TwistEstimate>& twist = std::nullopt);
 
 /// The content of an Odometry message, as the tracker's types.
 struct OdometrySample {

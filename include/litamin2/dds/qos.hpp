@@ -36,6 +36,15 @@ eprosima::fastdds::dds::DataReaderQos map_patches_reader_qos();
 eprosima::fastdds::dds::DataWriterQos status_writer_qos(std::int32_t depth = 10);
 eprosima::fastdds::dds::DataReaderQos status_reader_qos(std::int32_t depth = 10);
 
+/// rt/tf: reliable, volatile, keep-last `depth` (tf2_ros::DynamicBroadcasterQoS: depth 100).
+eprosima::fastdds::dds::DataWriterQos tf_writer_qos(std::int32_t depth = 100);
+eprosima::fastdds::dds::DataReaderQos tf_reader_qos(std::int32_t depth = 100);
+/// rt/tf_static: reliable, transient-local, keep-last 1 (tf2_ros::StaticBroadcasterQoS): the
+/// one message holds every static transform of the writer, late readers get it. Also the
+/// aggregator's map cloud (the latest map for late viewers).
+eprosima::fastdds::dds::DataWriterQos tf_static_writer_qos();
+eprosima::fastdds::dds::DataReaderQos tf_static_reader_qos();
+
 /// True when a discovered writer offers reliable reliability.
 bool writer_is_reliable(const eprosima::fastrtps::rtps::WriterDiscoveryInfo& info);
 

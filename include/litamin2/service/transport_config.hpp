@@ -3,6 +3,7 @@
 /// litamin2-aggregator.yaml (DESIGN.md section 4). Plain data; dds::participant_config() turns
 /// it into a Fast DDS participant.
 
+#include <optional>
 #include <string>
 
 namespace litamin2::service {
@@ -26,9 +27,28 @@ enum class TransportProfile {
 /// The name used in configs and on command lines: "loopback", "shm", "default", "xml".
 const char* to_string(TransportProfile profile);
 
+/// Where TransportConfig::domain came from.
+enum class DomainSource {
+  /// No `dds.domain` key and no ROS_DOMAIN_ID: 0, as ROS 2's default.
+  kDefault,
+  /// The config's `dds.domain` (it wins over the environment).
+  kConfig,
+  /// The ROS_DOMAIN_ID environment variable (the config set no domain).
+  kEnvironment,
+};
+
+/// "default", "config", "ROS_DOMAIN_ID".
+const char* to_string(DomainSource source);
+
+/// The domain id in a ROS_DOMAIN_ID value: std::nullopt and no error for null or an empty
+/// string (ROS 2 treats an empty value as unset); std::nullopt and `*error` set for anything
+/// but a decimal integer in 0..232 (no sign, no spaces, no trailing characters).
+std::optional<int> parse_ros_domain_id(const char* value, std::string* error);
+
 struct TransportConfig {
   /// DDS domain id (0..232 for the standard port mapping).
   int domain = 0;
+  DomainSource domain_source = DomainSource::kDefault;
   TransportProfile profile = TransportProfile::kLoopback;
   /// For TransportProfile::kXml: the XML profiles file and the participant profile in it.
   std::string xml_file;

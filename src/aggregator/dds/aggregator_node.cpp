@@ -2,15 +2,19 @@
 
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "litamin2/aggregator/dds/aggregator_messages.hpp"
+#include "litamin2/aggregator/dds/map_cloud_message.hpp"
 #include "litamin2/dds/checked_type.hpp"
 #include "litamin2/dds/participant_setup.hpp"
 #include "litamin2/dds/qos.hpp"
 #include "litamin2/dds/time_conversion.hpp"
+#include "litamin2/dds/transform_conversion.hpp"
 #include "litamin2/msg/KeyframePosesPubSubTypes.h"
 #include "litamin2/msg/MapPatchPubSubTypes.h"
 #include "litamin2/msg/MapSummaryPubSubTypes.h"
 #include "litamin2/service/topic_names.hpp"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
+#include "sensor_msgs/msg/PointCloud2PubSubTypes.h"
+#include "tf2_msgs/msg/TFMessagePubSubTypes.h"
 
 #include <spdlog/spdlog.h>
 #include <fastdds/dds/publisher/DataWriter.hpp>
@@ -62,8 +66,15 @@ std::uint32_t patch_payload_limit(int max_distributions) {
 
 class AggregatorNode::Sink : public AggregatorSink {
  public:
-  Sink(fdds::DataWriter* poses, fdds::DataWriter* summary, MapOdometryRelay& relay)
-      : poses_(poses), summary_(summary), relay_(relay) {}
+  Sink(fdds::DataWriter* poses, fdds::DataWriter* summary, MapOdometryRelay& relay,
+       MapCloudBuffer* cloud)
+      : poses_(poses), summary_(summary), relay_(relay), cloud_(cloud) {}
+  void publish_tile(const TileOutput& tile) override {
+    if (!cloud_) return;
+    std::lock_guard lock(cloud_->mutex);
+    cloud_->cloud.update(tile);
+    cloud_->changed = true;
+  }
   void publish_poses(const StreamPoses& poses) override {
     relay_.set_correction(poses.stream, map_correction(poses));
     litamin2::msg::KeyframePoses msg = to_keyframe_poses_msg(poses);
@@ -78,6 +89,7 @@ class AggregatorNode::Sink : public AggregatorSink {
   fdds::DataWriter* poses_;
   fdds::DataWriter* summary_;
   MapOdometryRelay& relay_;
+  MapCloudBuffer* cloud_;
 };
 
 AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Progress& progress)
@@ -136,7 +148,23 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
                                                  dds::status_writer_qos());
   if (!poses_writer || !summary_writer || !status_writer_)
     throw std::runtime_error("cannot create output writers");
-  sink_ = std::make_unique<Sink>(poses_writer, summary_writer, relay_);
+  if (!config_.topics.tf.empty() && !config_.topics.odometry.empty()) {
+    tf_type_ = dds::register_type(participant_.get(), new tf2_msgs::msg::TFMessagePubSubType());
+    tf_writer_ =
+        publisher_->create_datawriter(topic(config_.topics.tf, tf_type_), dds::tf_writer_qos());
+    if (!tf_writer_) throw std::runtime_error("cannot create the writer of " + config_.topics.tf);
+  }
+  if (!config_.topics.map_cloud.empty()) {
+    cloud_type_ =
+        dds::register_type(participant_.get(), new sensor_msgs::msg::PointCloud2PubSubType());
+    // Transient-local, latest only: a viewer that starts later gets the current map.
+    cloud_writer_ = publisher_->create_datawriter(topic(config_.topics.map_cloud, cloud_type_),
+                                                  dds::tf_static_writer_qos());
+    if (!cloud_writer_)
+      throw std::runtime_error("cannot create the writer of " + config_.topics.map_cloud);
+    cloud_ = std::make_unique<MapCloudBuffer>();
+  }
+  sink_ = std::make_unique<Sink>(poses_writer, summary_writer, relay_, cloud_.get());
   worker_ = std::make_unique<MappingWorker>(*core_, queue_, *sink_, config_);
   relay_.start();
   worker_->start();
@@ -148,10 +176,10 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
                                                << fdds::StatusMask::sample_lost());
   if (!reader_) throw std::runtime_error("cannot create the map patch reader");
   next_status_ = Clock::now();
-  spdlog::info("DDS participant up: domain {}, profile {}, reading {}, publishing {} and {}",
-               config_.dds.domain, service::to_string(config_.dds.profile),
-               config_.topics.map_patches, config_.topics.keyframe_poses,
-               config_.topics.map_summary);
+  spdlog::info("DDS participant up: domain {} ({}), profile {}, reading {}, publishing {} and {}",
+               config_.dds.domain, service::to_string(config_.dds.domain_source),
+               service::to_string(config_.dds.profile), config_.topics.map_patches,
+               config_.topics.keyframe_poses, config_.topics.map_summary);
 }
 
 AggregatorNode::~AggregatorNode() {
@@ -180,11 +208,22 @@ void AggregatorNode::subscribe_odometry(const WorkerStatus& status) {
                    out_topic);
       continue;
     }
-    relay_.add_stream(stream, [writer, stream](const nav_msgs::msg::Odometry& msg) {
-      nav_msgs::msg::Odometry copy = msg;
-      if (!writer->write(&copy))
-        spdlog::warn("cannot publish the map-frame odometry of {}", stream);
-    });
+    MapOdometryRelay::PublishTransform publish_transform;
+    if (tf_writer_) {
+      fdds::DataWriter* tf_writer = tf_writer_;
+      publish_transform = [tf_writer, stream](const geometry_msgs::msg::TransformStamped& t) {
+        tf2_msgs::msg::TFMessage msg = dds::to_tf_message(t);
+        if (!tf_writer->write(&msg)) spdlog::warn("cannot publish the map transform of {}", stream);
+      };
+    }
+    relay_.add_stream(
+        stream,
+        [writer, stream](const nav_msgs::msg::Odometry& msg) {
+          nav_msgs::msg::Odometry copy = msg;
+          if (!writer->write(&copy))
+            spdlog::warn("cannot publish the map-frame odometry of {}", stream);
+        },
+        std::move(publish_transform));
     o.listener = std::make_unique<OdometryListener>(stream, relay_);
     o.reader = subscriber_->create_datareader(in_t, dds::odom_reader_qos(), o.listener.get(),
                                               fdds::StatusMask::data_available());
@@ -201,10 +240,26 @@ void AggregatorNode::poll(Clock::time_point now) {
   if (stopped_) return;
   const WorkerStatus w = worker_->status();
   if (w.streams.size() > odometry_.size()) subscribe_odometry(w);
+  if (cloud_ && now >= next_cloud_) publish_map_cloud(now);
   if (now < next_status_) return;
   publish_status(now);
   next_status_ = now + std::chrono::duration_cast<Clock::duration>(
                            std::chrono::duration<double>(config_.publish.status_period_s));
+}
+
+void AggregatorNode::publish_map_cloud(Clock::time_point now) {
+  std::vector<MapPoint> points;
+  {
+    std::lock_guard lock(cloud_->mutex);
+    if (!cloud_->changed) return;
+    cloud_->changed = false;
+    points = cloud_->cloud.points();
+  }
+  // The tiles are in the map frame (the anchor stream's odometry frame, TileOutput::anchor).
+  sensor_msgs::msg::PointCloud2 msg = to_map_cloud_msg(points, dds::wall_clock_now(), kMapFrame);
+  if (!cloud_writer_->write(&msg)) spdlog::warn("cannot publish {}", config_.topics.map_cloud);
+  next_cloud_ = now + std::chrono::duration_cast<Clock::duration>(
+                          std::chrono::duration<double>(config_.publish.tiles_period_s));
 }
 
 bool AggregatorNode::healthy(Clock::time_point now) const {

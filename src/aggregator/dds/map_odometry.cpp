@@ -4,6 +4,8 @@
 #include "litamin2/core/so3.hpp"
 #include "litamin2/dds/odometry_conversion.hpp"
 #include "litamin2/dds/pose_conversion.hpp"
+#include "litamin2/dds/time_conversion.hpp"
+#include "litamin2/dds/transform_conversion.hpp"
 
 namespace litamin2::aggregator {
 
@@ -29,6 +31,13 @@ nav_msgs::msg::Odometry to_map_odometry(const nav_msgs::msg::Odometry& odom,
   out.pose().pose(dds::to_pose_msg(pose));
   out.pose().covariance(dds::ros_pose_covariance(left, pose));
   return out;
+}
+
+std::optional<geometry_msgs::msg::TransformStamped> to_map_transform(
+    const nav_msgs::msg::Odometry& odom, const MapCorrection& correction) {
+  if (correction.frame_id == odom.header().frame_id()) return std::nullopt;
+  return dds::to_transform_stamped(correction.correction, dds::to_stamp(odom.header().stamp()),
+                                   correction.frame_id, odom.header().frame_id());
 }
 
 }  // namespace litamin2::aggregator

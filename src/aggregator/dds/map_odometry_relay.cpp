@@ -15,9 +15,11 @@ MapOdometryRelay::~MapOdometryRelay() {
   stop();
 }
 
-void MapOdometryRelay::add_stream(const std::string& stream, Publish publish) {
+void MapOdometryRelay::add_stream(const std::string& stream, Publish publish,
+                                  PublishTransform publish_transform) {
   std::lock_guard lock(mutex_);
   streams_[stream].publish = std::move(publish);
+  streams_[stream].publish_transform = std::move(publish_transform);
 }
 
 void MapOdometryRelay::offer(const std::string& stream, nav_msgs::msg::Odometry odom,
@@ -27,6 +29,7 @@ void MapOdometryRelay::offer(const std::string& stream, nav_msgs::msg::Odometry 
     Stream& s = streams_[stream];
     ++s.counts.received;
     s.last_seen = now;
+    s.last_header = odom.header();
     if (s.window_count == 0 && s.window_start == Clock::time_point{}) s.window_start = now;
     ++s.window_count;
     const std::chrono::duration<double> window = now - s.window_start;
@@ -53,10 +56,20 @@ void MapOdometryRelay::reject(const std::string& stream) {
 }
 
 void MapOdometryRelay::set_correction(const std::string& stream, MapCorrection correction) {
-  std::lock_guard lock(mutex_);
-  Stream& s = streams_[stream];
-  s.counts.frame_id = correction.frame_id;
-  s.correction = std::move(correction);
+  {
+    std::lock_guard lock(mutex_);
+    Stream& s = streams_[stream];
+    s.counts.frame_id = correction.frame_id;
+    const bool changed = !s.correction || s.correction->frame_id != correction.frame_id ||
+                         s.correction->correction.matrix() != correction.correction.matrix();
+    s.correction = std::move(correction);
+    // The transform goes out now, at the latest odometry's stamp, not only with the next pose
+    // (which may never come: a stream that has stopped).
+    if (!changed || !s.publish_transform || !s.last_header || stopping_) return;
+    s.transform_pending = true;
+    pending_ = true;
+  }
+  wake_.notify_one();
 }
 
 void MapOdometryRelay::start() {
@@ -78,24 +91,45 @@ void MapOdometryRelay::stop() {
 void MapOdometryRelay::flush() {
   struct Work {
     const Publish* publish;
+    const PublishTransform* publish_transform;
     nav_msgs::msg::Odometry odom;
     MapCorrection correction;
     Stream* stream;
   };
   std::vector<Work> work;
+  std::vector<std::pair<const PublishTransform*, geometry_msgs::msg::TransformStamped>> transforms;
   {
     std::lock_guard lock(mutex_);
     pending_ = false;
     for (auto& [name, s] : streams_) {
+      if (s.transform_pending && !s.pending && s.last_header->stamp() != s.transform_stamp) {
+        // A changed correction without a new pose to carry it, at the latest odometry's stamp
+        // unless a transform went out at that stamp already: tf2 ignores a repeated stamp
+        // (TF_REPEATED_DATA), the next pose then carries the correction.
+        nav_msgs::msg::Odometry latest;
+        latest.header(*s.last_header);
+        if (const auto tf = to_map_transform(latest, *s.correction)) {
+          transforms.emplace_back(&s.publish_transform, *tf);
+          s.transform_stamp = tf->header().stamp();
+        }
+      }
+      s.transform_pending = false;
       if (!s.pending) continue;
-      if (s.publish) work.push_back({&s.publish, std::move(*s.pending), *s.correction, &s});
+      if (s.publish_transform) s.transform_stamp = s.pending->header().stamp();
+      if (s.publish)
+        work.push_back(
+            {&s.publish, &s.publish_transform, std::move(*s.pending), *s.correction, &s});
       s.pending.reset();
     }
   }
   // Streams are never removed and their publish function is set before their odometry is
   // read, so the pointers stay valid and unchanged outside the lock.
+  for (const auto& [publish_transform, tf] : transforms) (*publish_transform)(tf);
   for (Work& w : work) {
     (*w.publish)(to_map_odometry(w.odom, w.correction));
+    if (*w.publish_transform) {
+      if (const auto tf = to_map_transform(w.odom, w.correction)) (*w.publish_transform)(*tf);
+    }
     std::lock_guard lock(mutex_);
     ++w.stream->counts.published;
   }

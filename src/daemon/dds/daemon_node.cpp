@@ -4,14 +4,17 @@
 #include "litamin2/daemon/dds/dds_stream_sink.hpp"
 #include "litamin2/daemon/dds/points_listener.hpp"
 #include "litamin2/daemon/dds/status_message.hpp"
+#include "litamin2/daemon/stream_frames.hpp"
 #include "litamin2/daemon/stream_processor.hpp"
 #include "litamin2/dds/checked_type.hpp"
 #include "litamin2/dds/participant_setup.hpp"
 #include "litamin2/dds/qos.hpp"
 #include "litamin2/dds/time_conversion.hpp"
+#include "litamin2/dds/transform_conversion.hpp"
 #include "litamin2/msg/MapPatchPubSubTypes.h"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 #include "sensor_msgs/msg/PointCloud2PubSubTypes.h"
+#include "tf2_msgs/msg/TFMessagePubSubTypes.h"
 
 #include <spdlog/spdlog.h>
 #include <fastdds/dds/publisher/DataWriter.hpp>
@@ -85,11 +88,23 @@ DaemonNode::DaemonNode(DaemonConfig config) : config_(std::move(config)) {
   status_writer_ = publisher_->create_datawriter(status_topic, dds::status_writer_qos());
   if (!map_patch_writer_ || !status_writer_)
     throw std::runtime_error("cannot create output writers");
+  if (config_.outputs.publish_tf) {
+    tf_type_ = dds::register_type(participant_.get(), new tf2_msgs::msg::TFMessagePubSubType());
+    auto* tf_topic = participant_->create_topic(config_.outputs.tf_topic, tf_type_.get_type_name(),
+                                                fdds::TOPIC_QOS_DEFAULT);
+    auto* tf_static_topic = participant_->create_topic(
+        config_.outputs.tf_static_topic, tf_type_.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
+    if (!tf_topic || !tf_static_topic) throw std::runtime_error("cannot create the tf topics");
+    tf_writer_ = publisher_->create_datawriter(tf_topic, dds::tf_writer_qos());
+    tf_static_writer_ = publisher_->create_datawriter(tf_static_topic, dds::tf_static_writer_qos());
+    if (!tf_writer_ || !tf_static_writer_) throw std::runtime_error("cannot create the tf writers");
+  }
 
   for (const StreamConfig& stream : config_.streams) add_stream(stream);
   next_status_ = Clock::now();
-  spdlog::info("DDS participant up: domain {}, profile {}, {} configured stream(s){}",
-               config_.dds.domain, to_string(config_.dds.profile), config_.streams.size(),
+  spdlog::info("DDS participant up: domain {} ({}), profile {}, {} configured stream(s){}",
+               config_.dds.domain, service::to_string(config_.dds.domain_source),
+               to_string(config_.dds.profile), config_.streams.size(),
                pattern_ ? ", discovering " + pattern_->str() : std::string());
 }
 
@@ -114,9 +129,16 @@ DaemonNode::Stream& DaemonNode::add_stream(StreamConfig config) {
     throw std::runtime_error("stream " + s.config.id + ": cannot create its topics");
   s.odom_writer = publisher_->create_datawriter(odom_topic, dds::odom_writer_qos());
   if (!s.odom_writer) throw std::runtime_error("stream " + s.config.id + ": no odom writer");
-  s.sink = std::make_unique<DdsStreamSink>(s.odom_writer, map_patch_writer_,
-                                           s.config.id + "/" + config_.outputs.odom_frame,
-                                           s.config.id + "/base_link");
+  const StreamFrames frames = stream_frames(config_.outputs, s.config);
+  s.sink = std::make_unique<DdsStreamSink>(s.odom_writer, map_patch_writer_, tf_writer_, frames);
+  if (tf_static_writer_) {
+    // One transient-local message holds every stream's base -> sensor (keep-last 1, as ROS 2's
+    // static broadcaster): a new stream republishes the whole set.
+    static_transforms_.transforms().push_back(dds::to_transform_stamped(
+        s.config.extrinsic, dds::wall_clock_now(), frames.base, frames.sensor));
+    if (!tf_static_writer_->write(&static_transforms_))
+      spdlog::warn("stream {}: writing {} failed", s.config.id, config_.outputs.tf_static_topic);
+  }
   s.processor = std::make_unique<StreamProcessor>(s.config, *s.sink, s.stats);
   StreamProcessor* processor = s.processor.get();
   s.handle = scheduler_->add_stream(s.config.id, [processor](Frame& f) { processor->process(f); });
@@ -129,7 +151,10 @@ DaemonNode::Stream& DaemonNode::add_stream(StreamConfig config) {
   conversion.max_points = static_cast<std::size_t>(config_.limits.max_points_per_scan);
   s.listener =
       std::make_unique<PointsListener>(s.config.id, *scheduler_, s.handle, s.stats, conversion);
-  spdlog::info("stream {}: {} -> {}", s.config.id, s.config.topic, odom_topic_name);
+  spdlog::info("stream {}: {} -> {}{}", s.config.id, s.config.topic, odom_topic_name,
+               tf_writer_
+                   ? fmt::format(", tf {} -> {} -> {}", frames.odom, frames.base, frames.sensor)
+                   : std::string());
   streams_.push_back(std::move(stream));
   return s;
 }

@@ -2,28 +2,35 @@
 
 #include "litamin2/dds/map_patch_conversion.hpp"
 #include "litamin2/dds/odometry_conversion.hpp"
+#include "litamin2/dds/transform_conversion.hpp"
 #include "litamin2/msg/MapPatch.h"
 #include "nav_msgs/msg/Odometry.h"
+#include "tf2_msgs/msg/TFMessage.h"
 
 namespace litamin2::daemon {
 
 namespace fdds = eprosima::fastdds::dds;
 
 DdsStreamSink::DdsStreamSink(fdds::DataWriter* odom_writer, fdds::DataWriter* map_patch_writer,
-                             std::string odom_frame, std::string base_frame)
+                             fdds::DataWriter* tf_writer, StreamFrames frames)
     : odom_writer_(odom_writer),
       map_patch_writer_(map_patch_writer),
-      odom_frame_(std::move(odom_frame)),
-      base_frame_(std::move(base_frame)) {}
+      tf_writer_(tf_writer),
+      frames_(std::move(frames)) {}
 
 void DdsStreamSink::publish_odometry(const OdometryOutput& o) {
   nav_msgs::msg::Odometry msg =
-      dds::to_odometry(o.pose, o.covariance, o.stamp, odom_frame_, base_frame_);
+      dds::to_odometry(o.pose, o.covariance, o.stamp, frames_.odom, frames_.base, o.twist);
   if (!odom_writer_->write(&msg)) ++write_failures_;
+  if (tf_writer_) {
+    tf2_msgs::msg::TFMessage tf =
+        dds::to_tf_message(dds::to_transform_stamped(o.pose, o.stamp, frames_.odom, frames_.base));
+    if (!tf_writer_->write(&tf)) ++write_failures_;
+  }
 }
 
 void DdsStreamSink::publish_keyframe(const Keyframe& keyframe) {
-  litamin2::msg::MapPatch msg = dds::to_map_patch(keyframe, odom_frame_);
+  litamin2::msg::MapPatch msg = dds::to_map_patch(keyframe, frames_.odom);
   if (!map_patch_writer_->write(&msg)) ++write_failures_;
 }
 

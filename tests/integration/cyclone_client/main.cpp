@@ -156,7 +156,7 @@ int main(int argc, char** argv) {
       "its nav_msgs/Odometry, using Cyclone DDS (C API) only. Needs CYCLONEDDS_URI."};
   std::string sequence_dir, stream = "cyclone", output, reference, reference_out;
   int domain = 0;
-  double frame_timeout_s = 10.0, match_timeout_s = 30.0;
+  double frame_timeout_s = 10.0, match_timeout_s = 30.0, period_s = 0.0;
   app.add_option("sequence", sequence_dir, "KITTI sequence folder (velodyne/*.bin)")->required();
   app.add_option("--stream", stream, "stream id: rt/<stream>/points in, rt/<stream>/odom out")
       ->capture_default_str();
@@ -166,6 +166,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--match-timeout", match_timeout_s,
                  "seconds to wait for the daemon's reader and odometry writer")
+      ->capture_default_str();
+  app.add_option("--period", period_s,
+                 "seconds at least from one scan's publication to the next (0: as fast as "
+                 "the odometry comes back)")
       ->capture_default_str();
   app.add_option("--reference", reference,
                  "KITTI poses (litamin2-odometry) every received pose must equal bit for bit");
@@ -277,6 +281,7 @@ int main(int argc, char** argv) {
   std::size_t mismatches = 0;
   double max_dt = 0.0;
   const auto start = std::chrono::steady_clock::now();
+  auto next_send = start;
   for (std::size_t i = 0; i < frames; ++i) {
     litamin2::PointCloud cloud;
     try {
@@ -311,6 +316,10 @@ int main(int argc, char** argv) {
     msg.data._buffer = data.data();
     msg.data._release = false;
     msg.is_dense = true;
+    if (period_s > 0.0 && i > 0) std::this_thread::sleep_until(next_send);
+    next_send =
+        std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                               std::chrono::duration<double>(period_s));
     if (!check(dds_write(writer, &msg), "dds_write")) return 1;
 
     // Wait for this frame's odometry (matched by stamp).

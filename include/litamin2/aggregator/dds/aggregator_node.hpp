@@ -14,6 +14,7 @@
 #include "litamin2/aggregator/dds/map_odometry_relay.hpp"
 #include "litamin2/aggregator/dds/odometry_listener.hpp"
 #include "litamin2/aggregator/dds/patch_listener.hpp"
+#include "litamin2/aggregator/map_cloud.hpp"
 #include "litamin2/aggregator/mapping_worker.hpp"
 #include "litamin2/aggregator/patch_queue.hpp"
 #include "litamin2/dds/checked_type.hpp"
@@ -26,6 +27,7 @@
 #include <chrono>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 
 namespace eprosima::fastdds::dds {
@@ -64,7 +66,15 @@ class AggregatorNode {
 
  private:
   class Sink;
+  /// The map's points: written by the mapping thread (Sink::publish_tile), read by poll().
+  struct MapCloudBuffer {
+    std::mutex mutex;
+    MapCloud cloud;
+    bool changed = false;
+  };
   void publish_status(Clock::time_point now);
+  /// Sends the map's points if tiles changed since the last time.
+  void publish_map_cloud(Clock::time_point now);
   /// Odometry reader and map-frame writer for streams that have none yet.
   void subscribe_odometry(const WorkerStatus& status);
 
@@ -79,7 +89,7 @@ class AggregatorNode {
   PatchListener listener_;
   dds::ParticipantPtr participant_;
   eprosima::fastdds::dds::TypeSupport patch_type_, poses_type_, summary_type_, status_type_,
-      odometry_type_;
+      odometry_type_, tf_type_, cloud_type_;
   /// The types of patch_type_ and odometry_type_ (owned by them), for their failure counts.
   dds::CheckedType<litamin2::msg::MapPatchPubSubType>* checked_patch_type_ = nullptr;
   dds::CheckedType<nav_msgs::msg::OdometryPubSubType>* checked_odometry_type_ = nullptr;
@@ -87,6 +97,13 @@ class AggregatorNode {
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
   eprosima::fastdds::dds::DataWriter* status_writer_ = nullptr;
+  /// topics.tf (null when empty or without odometry): map -> odom per stream.
+  eprosima::fastdds::dds::DataWriter* tf_writer_ = nullptr;
+  /// topics.map_cloud (null when empty): the map's points, filled by the mapping thread's
+  /// tiles, sent from poll().
+  eprosima::fastdds::dds::DataWriter* cloud_writer_ = nullptr;
+  std::unique_ptr<MapCloudBuffer> cloud_;
+  Clock::time_point next_cloud_{};
   MapOdometryRelay relay_;
   std::map<std::string, OdometryStream> odometry_;
   std::unique_ptr<Sink> sink_;

@@ -7,10 +7,12 @@
 /// poses and keyframe odometry poses are in the same odometry frame (litamin2d publishes both),
 /// so C is a change of that frame and the child frame (sensor or base) does not matter.
 
+#include "geometry_msgs/msg/TransformStamped.h"
 #include "litamin2/aggregator/aggregator_outputs.hpp"
 #include "nav_msgs/msg/Odometry.h"
 
 #include <Eigen/Geometry>
+#include <optional>
 #include <string>
 
 namespace litamin2::aggregator {
@@ -36,5 +38,19 @@ MapCorrection map_correction(const StreamPoses& poses);
 /// child frame).
 nav_msgs::msg::Odometry to_map_odometry(const nav_msgs::msg::Odometry& odom,
                                         const MapCorrection& correction);
+
+}  // namespace litamin2::aggregator
+
+namespace litamin2::aggregator {
+
+/// The correction as a tf2 transform for rt/tf: parent correction.frame_id ("map"), child the
+/// odometry's frame (header.frame_id, "<stream>/odom"), the odometry's stamp, C itself. Sent
+/// when C changes (MapOdometryRelay::set_correction) and with each map-frame pose (tf2 looks
+/// transforms up by stamp and does not extrapolate from one sample, so a transform sent only
+/// when C changes could not be looked up at later stamps). std::nullopt when both frames are the
+/// same (the anchor stream before any merge: C is the identity and tf2 refuses a frame as its own
+/// parent).
+std::optional<geometry_msgs::msg::TransformStamped> to_map_transform(
+    const nav_msgs::msg::Odometry& odom, const MapCorrection& correction);
 
 }  // namespace litamin2::aggregator

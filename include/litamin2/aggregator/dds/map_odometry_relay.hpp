@@ -4,8 +4,9 @@
 /// The odometry listeners only offer() the converted message (a short lock, the latest message
 /// of a stream replacing one not yet published); the mapping thread updates each stream's
 /// correction when it publishes the stream's corrected poses; a thread of the relay composes and
-/// publishes. A stream without a correction yet (odometry before its first keyframe reached the
-/// mapper) gets nothing published. Counters per stream for the status.
+/// publishes (the map transform also when only the correction changed). A stream without a
+/// correction yet (odometry before its first keyframe reached the mapper) gets nothing published.
+/// Counters per stream for the status.
 
 #include "litamin2/aggregator/dds/map_odometry.hpp"
 #include "nav_msgs/msg/Odometry.h"
@@ -45,6 +46,8 @@ class MapOdometryRelay {
   using Clock = std::chrono::steady_clock;
   /// Writes one map-frame odometry message of a stream; called on the relay's thread.
   using Publish = std::function<void(const nav_msgs::msg::Odometry&)>;
+  /// Writes the stream's map -> odom transform (to_map_transform) with each of those poses.
+  using PublishTransform = std::function<void(const geometry_msgs::msg::TransformStamped&)>;
 
   MapOdometryRelay();
   /// Stops (see stop()).
@@ -52,14 +55,19 @@ class MapOdometryRelay {
   MapOdometryRelay(const MapOdometryRelay&) = delete;
   MapOdometryRelay& operator=(const MapOdometryRelay&) = delete;
 
-  /// Registers a stream and where its map-frame poses go (before its odometry is read).
-  void add_stream(const std::string& stream, Publish publish);
+  /// Registers a stream and where its map-frame poses (and, if given, its map -> odom
+  /// transforms) go, before its odometry is read.
+  void add_stream(const std::string& stream, Publish publish,
+                  PublishTransform publish_transform = {});
   /// Listener thread: the stream's latest odometry. Never waits but for a short lock.
   void offer(const std::string& stream, nav_msgs::msg::Odometry odom,
              Clock::time_point now = Clock::now());
   /// Listener thread: a message that could not be used.
   void reject(const std::string& stream);
-  /// Mapping thread: the stream's correction changed.
+  /// Mapping thread: the stream's correction changed. When it differs from the last one and the
+  /// stream has a transform publisher, the map transform goes out at once (stamped with the
+  /// latest odometry, unless a transform went out at that stamp already), not only with the
+  /// next pose.
   void set_correction(const std::string& stream, MapCorrection correction);
 
   /// Starts the publishing thread.
@@ -74,6 +82,13 @@ class MapOdometryRelay {
  private:
   struct Stream {
     Publish publish;
+    PublishTransform publish_transform;
+    /// The latest odometry's header (stamp, frame), and a map transform to send for it (the
+    /// correction changed since the last pose).
+    std::optional<std_msgs::msg::Header> last_header;
+    bool transform_pending = false;
+    /// Stamp of the last map transform sent (one per stamp: tf2 ignores repeated stamps).
+    builtin_interfaces::msg::Time transform_stamp;
     std::optional<nav_msgs::msg::Odometry> pending;
     std::optional<MapCorrection> correction;
     OdometryStreamStatus counts;

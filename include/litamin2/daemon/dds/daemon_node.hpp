@@ -1,10 +1,11 @@
 #pragma once
 /// The daemon's DDS side: one participant; per stream a reader of rt/<stream>/points (created
 /// when discovery reports a writer, reliable if the writer is), a tracker on the shared
-/// StreamScheduler, and a writer of rt/<stream>/odom; one writer each for map patches and
-/// status. Streams come from the config and, with discovery enabled, from every PointCloud2
-/// topic matching the pattern. The main loop calls poll(); shutdown() stops input, drains the
-/// queues within the configured time and publishes a final status.
+/// StreamScheduler, and a writer of rt/<stream>/odom; one writer each for map patches,
+/// status, rt/tf (every stream's odom -> base per pose) and rt/tf_static (every stream's
+/// base -> sensor, transient-local). Streams come from the config and, with discovery enabled, from
+/// every PointCloud2 topic matching the pattern. The main loop calls poll(); shutdown() stops
+/// input, drains the queues within the configured time and publishes a final status.
 
 #include "litamin2/daemon/daemon_config.hpp"
 #include "litamin2/daemon/dds/publisher_discovery.hpp"
@@ -14,6 +15,8 @@
 #include "litamin2/service/topic_names.hpp"
 
 #include <fastdds/dds/topic/TypeSupport.hpp>
+
+#include "tf2_msgs/msg/TFMessage.h"
 
 #include <chrono>
 #include <map>
@@ -80,6 +83,12 @@ class DaemonNode {
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::DataWriter* map_patch_writer_ = nullptr;
   eprosima::fastdds::dds::DataWriter* status_writer_ = nullptr;
+  /// rt/tf and rt/tf_static (outputs.publish_tf; null without).
+  eprosima::fastdds::dds::TypeSupport tf_type_;
+  eprosima::fastdds::dds::DataWriter* tf_writer_ = nullptr;
+  eprosima::fastdds::dds::DataWriter* tf_static_writer_ = nullptr;
+  /// Every stream's base -> sensor, as last written on rt/tf_static.
+  tf2_msgs::msg::TFMessage static_transforms_;
   std::unique_ptr<StreamScheduler> scheduler_;
   std::vector<std::unique_ptr<Stream>> streams_;
   Clock::time_point next_status_{};

@@ -1,8 +1,11 @@
 #pragma once
-/// A stream's ResultSink on DDS: nav_msgs/Odometry on rt/<stream>/odom for every frame and a
-/// litamin2 MapPatch on the shared map patches topic for every keyframe.
+/// A stream's ResultSink on DDS: nav_msgs/Odometry on rt/<stream>/odom for every frame (with
+/// the twist since the previous frame when there is one), the same pose as odom -> base on
+/// rt/tf (tf2_msgs/TFMessage) when a tf writer is given, and a litamin2 MapPatch on the shared
+/// map patches topic for every keyframe.
 
 #include "litamin2/daemon/result_sink.hpp"
+#include "litamin2/daemon/stream_frames.hpp"
 
 #include <fastdds/dds/publisher/DataWriter.hpp>
 
@@ -12,12 +15,12 @@ namespace litamin2::daemon {
 
 class DdsStreamSink : public ResultSink {
  public:
-  /// `odom_writer` (this stream's) and `map_patch_writer` (shared; DataWriter::write is
-  /// thread-safe) must outlive the sink. Odometry headers name `odom_frame` and
-  /// `base_frame`.
+  /// `odom_writer` (this stream's), `map_patch_writer` and `tf_writer` (shared; DataWriter::write
+  /// is thread-safe; `tf_writer` may be null: no rt/tf) must outlive the sink. Odometry headers
+  /// and transforms name `frames.odom` and `frames.base`.
   DdsStreamSink(eprosima::fastdds::dds::DataWriter* odom_writer,
-                eprosima::fastdds::dds::DataWriter* map_patch_writer, std::string odom_frame,
-                std::string base_frame);
+                eprosima::fastdds::dds::DataWriter* map_patch_writer,
+                eprosima::fastdds::dds::DataWriter* tf_writer, StreamFrames frames);
 
   void publish_odometry(const OdometryOutput& odometry) override;
   void publish_keyframe(const Keyframe& keyframe) override;
@@ -28,8 +31,8 @@ class DdsStreamSink : public ResultSink {
  private:
   eprosima::fastdds::dds::DataWriter* odom_writer_;
   eprosima::fastdds::dds::DataWriter* map_patch_writer_;
-  std::string odom_frame_;
-  std::string base_frame_;
+  eprosima::fastdds::dds::DataWriter* tf_writer_;
+  StreamFrames frames_;
   std::uint64_t write_failures_ = 0;
 };
 
