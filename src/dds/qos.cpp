@@ -90,18 +90,13 @@ fdds::DataReaderQos map_patches_reader_qos() {
   return qos;
 }
 
+// rt/tf has the odometry's QoS (reliable, volatile, keep last), as tf2_ros's broadcaster does.
 fdds::DataWriterQos tf_writer_qos(std::int32_t depth) {
-  fdds::DataWriterQos qos = fdds::DATAWRITER_QOS_DEFAULT;
-  common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::VOLATILE_DURABILITY_QOS,
-         fdds::KEEP_LAST_HISTORY_QOS, depth);
-  return qos;
+  return odom_writer_qos(depth);
 }
 
 fdds::DataReaderQos tf_reader_qos(std::int32_t depth) {
-  fdds::DataReaderQos qos = fdds::DATAREADER_QOS_DEFAULT;
-  common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::VOLATILE_DURABILITY_QOS,
-         fdds::KEEP_LAST_HISTORY_QOS, depth);
-  return qos;
+  return odom_reader_qos(depth);
 }
 
 fdds::DataWriterQos tf_static_writer_qos() {

@@ -285,6 +285,7 @@ TEST(DaemonConfig, FrameNamesAndTheStreamPrefix) {
   EXPECT_EQ(stream_frames(d.outputs, d.streams[1]).sensor, "os_sensor");  // verbatim
 
   const DaemonConfig plain = parse(R"(
+discovery: {enabled: false}
 streams: [{id: car1}]
 outputs: {frame_prefix: false, odom_frame: odom_lidar, base_frame: base_footprint}
 )");
