@@ -23,6 +23,8 @@
 #include <string>
 #include <vector>
 
+#include <liblzf/lzf.h>
+
 namespace fs = std::filesystem;
 using namespace litamin2;
 namespace rtps = eprosima::fastrtps::rtps;
