@@ -23,7 +23,7 @@ void MetricsBoard::beat(Clock::time_point now) {
 
 bool MetricsBoard::alive(Clock::time_point now, Clock::duration max_age) const {
   const Clock::rep beat = last_beat_.load();
-  if (beat == 0) return false;
+  if (beat == 0) return true;  // starting: the loop has not begun
   return now - Clock::time_point(Clock::duration(beat)) <= max_age;
 }
 

@@ -1,10 +1,10 @@
 #pragma once
 /// The Prometheus endpoint of litamin2d and litamin2-aggregator, on cpp-httplib (Debian's
 /// libcpp-httplib-dev): GET /metrics (the board's text, exposition format 0.0.4), /healthz
-/// (200 while the main loop turns, 503 once it has not for `stale_after`), /readyz (200 while the
-/// board says ready, else 503). One server thread that reads only the MetricsBoard: it never
-/// takes a lock of the tracking or mapping path. Transport only: what is served is rendered by
-/// the process.
+/// (200 while starting and while the main loop turns, 503 once it has not for `stale_after`),
+/// /readyz (200 while the board says ready, else 503). One server thread that reads only the
+/// MetricsBoard: it never takes a lock of the tracking or mapping path. Transport only: what is
+/// served is rendered by the process.
 
 #include "litamin2/service/metrics_board.hpp"
 #include "litamin2/service/metrics_config.hpp"

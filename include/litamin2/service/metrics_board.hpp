@@ -24,7 +24,9 @@ class MetricsBoard {
 
   /// The main loop turned at `now`.
   void beat(Clock::time_point now);
-  /// The main loop turned within `max_age` of `now`.
+  /// The main loop turned within `max_age` of `now`, or has not begun yet (starting: the
+  /// aggregator's store recovery may take minutes before its loop runs; systemd's watchdog too
+  /// starts only at READY). A wedged start is /readyz's and TimeoutStartSec='s to report.
   bool alive(Clock::time_point now, Clock::duration max_age) const;
 
   void set_ready(bool ready) { ready_.store(ready); }
