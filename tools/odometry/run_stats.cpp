@@ -25,6 +25,7 @@ void RunStats::add(const FrameResult& frame) {
   regrid_stops_ += frame.regrid_stopped ? 1 : 0;
   retries_ += frame.retried ? 1 : 0;
   recoveries_ += frame.recovered ? 1 : 0;
+  map_resets_ += frame.map_reset ? 1 : 0;
   self_hits_ += static_cast<std::size_t>(frame.self_hits);
 }
 
@@ -99,6 +100,7 @@ std::string RunStats::to_json(const std::string& mode, const std::string& sensor
       << "  \"regrid_stops\": " << regrid_stops_ << ",\n"
       << "  \"recovery_retries\": " << retries_ << ",\n"
       << "  \"recovery_kept\": " << recoveries_ << ",\n"
+      << "  \"map_resets\": " << map_resets_ << ",\n"
       << "  \"mean_self_hits_dropped\": " << self_hits_ / n << ",\n"
       << "  \"keyframes\": " << keyframes_ << ",\n"
       << "  \"registration_failures\": " << failures_ << ",\n"
