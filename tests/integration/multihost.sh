@@ -22,6 +22,14 @@
 #             has its odometry ATE within ATE_BOUND (1.0 m, the demo's default bound); the moved
 #             stream's ATE is printed (moved_stream_ate_m in the JSON line; MOVED_ATE_BOUND
 #             enforces a bound).
+#   linkcut   one daemon (vehicle host) and the aggregator: the aggregator host's link is cut
+#             (ip link set down on its bridge port) for OUTAGE_S (default 5) seconds during
+#             ingest, then healed; then the same link gets netem loss 10 % and 100 ms delay for
+#             the rest of the run if the kernel has sch_netem. Measured: keyframes published
+#             (the daemon's status) and stored, keyframes_lost_link_cut (target 0: the outage is
+#             shorter than outputs.map_patch_history), odometry messages the vehicle host got
+#             during the outage (the daemon keeps processing), the daemon's RSS growth over the
+#             outage.
 #
 # Ends by printing one JSON line with the issue's keys; a value not measured by the scenarios
 # run is null, with the reason in the log.
@@ -36,7 +44,7 @@ probe="$build/tests/integration/daemon_probe"
 frames=${FRAMES:-120}
 rate=${RATE:-10}
 domain=${DOMAIN:-47}
-scenarios=${SCENARIOS:-chain failover}
+scenarios=${SCENARIOS:-chain failover linkcut}
 streams=(vehicle_00 vehicle_01)
 tag="lm2mh$$"
 hosts=(vehicle daemon2 aggregator)
@@ -395,6 +403,85 @@ $sharding" > "$dir/daemon_b.yaml"
         fail "failover: ATE of $s2 $ate m above ${ATE_BOUND:-1.0} m"
     fi
   done
+}
+
+rss_mb() {  # rss_mb PID: resident set size in MB
+  awk '/^VmRSS:/ {printf "%.1f", $2 / 1024}' "/proc/$1/status"
+}
+
+scenario_linkcut() {
+  local dir="$work/linkcut" outage=${OUTAGE_S:-5}
+  rm -rf "$dir"
+  mkdir -p "$dir"
+  log "linkcut: litamin2d on the vehicle host; the aggregator host's link down for $outage s"
+  start_aggregator "$dir"
+  daemon_yaml vehicle > "$dir/daemon.yaml"
+  start vehicle "$dir/daemon.log" "$bin/litamin2d/litamin2d" --config "$dir/daemon.yaml"
+  local daemon_pid=$last_pid
+  # The odometry subscriber on the vehicle host: it sees the daemon work through the outage.
+  local args=() s
+  for s in "${streams[@]}"; do args+=(--stream "$s"); done
+  start vehicle "$dir/probe.log" "$probe" --domain "$domain" --profile "$work/vehicle.xml" \
+    --expect "$frames" --timeout $((frames / rate + 30)) --arrivals-out "$dir/arrivals_" \
+    --poses-out "$dir/received_" "${args[@]}"
+  local probe_pid=$last_pid
+  replay "$dir" &
+  local replay_pid=$!
+  # The cut: once the aggregator stored 10 keyframes (ingest is under way).
+  for _ in $(seq 1 600); do
+    [ "$(stored_keyframes "$dir/aggregator.db")" -ge 10 ] && break
+    sleep 0.1
+  done
+  local rss_before rss_after cut_at heal_at stored_at_cut
+  rss_before=$(rss_mb "$daemon_pid")
+  stored_at_cut=$(stored_keyframes "$dir/aggregator.db")
+  cut_at=$(date +%s.%N)
+  ip -n "$(ns bridge)" link set "$agg_link" down
+  sleep "$outage"
+  rss_after=$(rss_mb "$daemon_pid")
+  heal_at=$(date +%s.%N)
+  ip -n "$(ns bridge)" link set "$agg_link" up
+  local stored_at_heal
+  stored_at_heal=$(stored_keyframes "$dir/aggregator.db")
+  echo "  link down at $cut_at for $outage s: stored $stored_at_cut -> $stored_at_heal during it;" \
+    "daemon RSS $rss_before -> $rss_after MB"
+  local netem=0
+  if tc -n "$(ns aggregator)" qdisc add dev eth0 root netem loss 10% delay 100ms 2> "$dir/tc.log"; then
+    netem=1
+    echo "  netem: loss 10 %, delay 100 ms on the aggregator host's link for the rest of the run"
+  else
+    echo "  netem: not available ($(head -1 "$dir/tc.log")): loss/delay not tested"
+  fi
+  local replay_rc=0
+  wait "$replay_pid" || replay_rc=$?
+  [ "$replay_rc" -eq 0 ] || fail "linkcut: replay failed"
+  local probe_rc=0
+  wait "$probe_pid" || probe_rc=$?
+  [ "$probe_rc" -eq 0 ] || fail "linkcut: the vehicle host did not get every odometry message"
+  local published stored
+  published=$(status_keyframes "$dir/probe.log")
+  stored=$(wait_stored "$dir/aggregator.db" "$published" 60)
+  [ "$netem" -eq 1 ] && tc -n "$(ns aggregator)" qdisc del dev eth0 root 2> /dev/null || true
+  stop "$daemon_pid" || fail "linkcut: litamin2d exited with an error"
+  stop "$aggregator_pid" || fail "linkcut: the aggregator exited with an error"
+  local during
+  during=0
+  for s in "${streams[@]}"; do
+    during=$((during + $(awk -v a="$cut_at" -v b="$heal_at" '$1 > a && $1 <= b' "$dir/arrivals_$s.txt" | wc -l)))
+  done
+  local fps
+  fps=$(echo "$during / $outage" | bc -l | awk '{printf "%.1f", $1}')
+  echo "  during the outage: $during odometry messages on the vehicle host ($fps/s for" \
+    "${#streams[@]} streams at $rate Hz)"
+  echo "  keyframes: $published published, $stored stored"
+  result[keyframes_published]=$published
+  result[keyframes_stored]=$stored
+  result[keyframes_lost_link_cut]=$((published - stored))
+  result[daemon_rss_growth_mb_outage]=$(echo "$rss_after - $rss_before" | bc -l | awk '{printf "%.1f", $1}')
+  [ "$published" -gt 0 ] && [ "$stored" -eq "$published" ] ||
+    fail "linkcut: $((published - stored)) keyframes lost"
+  awk -v f="$fps" -v r="$rate" -v n=${#streams[@]} 'BEGIN {exit !(f >= 0.9 * r * n)}' ||
+    fail "linkcut: the daemon processed $fps frames/s during the outage"
 }
 
 for s in $scenarios; do "scenario_$s"; done
