@@ -213,7 +213,8 @@ std::size_t Mapper::loops_since_full_pass() const {
   return impl_->checked_since_full_pass;
 }
 
-void Mapper::restore(std::vector<KeyframeNode> nodes, const std::vector<LoopEdge>& loops) {
+void Mapper::restore(std::vector<KeyframeNode> nodes, const std::vector<LoopEdge>& loops,
+                     const std::vector<LoopEdge>& pending_merges) {
   Impl& m = *impl_;
   if (m.graph.size() != 0) throw std::logic_error("Mapper::restore: the mapper is not empty");
   for (KeyframeNode& node : nodes) {
@@ -237,6 +238,24 @@ void Mapper::restore(std::vector<KeyframeNode> nodes, const std::vector<LoopEdge
   }
   m.loops.check_all(m.graph);
   m.checked_since_full_pass = m.loops.size();
+  std::vector<MergeCandidate> pending;
+  for (const LoopEdge& edge : pending_merges) {
+    const std::int64_t from = m.graph.find(edge.from), to = m.graph.find(edge.to);
+    if (from < 0 || to < 0)
+      throw std::invalid_argument("Mapper::restore: a pending merge's keyframe is missing");
+    pending.push_back({edge, static_cast<std::uint32_t>(from), static_cast<std::uint32_t>(to)});
+  }
+  m.merges.restore(pending, m.graph);
+}
+
+std::vector<LoopEdge> Mapper::pending_merges() const {
+  std::vector<LoopEdge> out;
+  for (const MergeCandidate& c : impl_->merges.pending_loops()) out.push_back(c.edge);
+  return out;
+}
+
+std::uint64_t Mapper::pending_merges_version() const {
+  return impl_->merges.version();
 }
 
 bool Mapper::contains(const KeyframeKey& key) const {
