@@ -162,7 +162,10 @@ std::size_t TileMap::update(const KeyframeGraph& graph, DistributionCache& cache
       }
       if (segment.generation == generation_) continue;
       segment.generation = generation_;
+      // A segment's moments recomputed (evicted) cost its keyframes' fusions too.
+      const std::size_t recomputed = recomputed_keyframes_;
       done += reconcile(segment, key, graph, cache, anchor);
+      done += recomputed_keyframes_ - recomputed;
       evict_segments(&key);
     }
   }
@@ -258,6 +261,7 @@ SegmentVoxels& TileMap::segment_voxels(Segment& segment, const SegmentKey& key,
   for (std::uint32_t n : segment.nodes) {
     const Fused& f = fused_[n];
     if (!f.fused) continue;
+    ++recomputed_keyframes_;
     stats_.inconsistent += segment.voxels->apply(
         *cache.get(graph.node(n).key), isometry(f.relative), geometry_.voxels.voxel_size, +1);
   }

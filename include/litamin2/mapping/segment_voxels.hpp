@@ -19,13 +19,14 @@
 /// keyframe's distribution lands whole today).
 ///
 /// Additive like MapTile: a keyframe added at a relative pose is subtracted at the same pose
-/// exactly (same voxels). Not thread-safe.
+/// exactly (same voxels). Held compactly (a sorted array of count and double sums, the origin
+/// implied by the key: 88 B a voxel) because a fleet's map holds a segment per 10 keyframes.
+/// Not thread-safe.
 
 #include "litamin2/core/distribution.hpp"
 #include "litamin2/core/voxel_moments.hpp"
 #include "litamin2/mapping/map_tile.hpp"
 
-#include <tsl/robin_map.h>
 #include <Eigen/Geometry>
 
 #include <cstddef>
@@ -42,13 +43,23 @@ class SegmentVoxels {
   std::size_t apply(const std::vector<Distribution>& distributions,
                     const Eigen::Isometry3d& relative, double voxel_size, int sign);
 
-  /// Voxel moments by pack_voxel of the segment voxel; origin = the voxel's centre.
-  const tsl::robin_map<std::uint64_t, VoxelMoments>& voxels() const { return voxels_; }
+  struct Voxel {
+    /// pack_voxel of the segment voxel; the sums are relative to its centre.
+    std::uint64_t key = 0;
+    std::int32_t count = 0;
+    double sum[3] = {0.0, 0.0, 0.0};
+    /// xx, xy, xz, yy, yz, zz (VoxelMoments::sum_sq).
+    double sum_sq[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  };
+  /// Ordered by key.
+  const std::vector<Voxel>& voxels() const { return voxels_; }
+  /// A voxel's moments with their origin (the voxel's centre for `voxel_size`).
+  static VoxelMoments moments(const Voxel& v, double voxel_size);
   bool empty() const { return voxels_.empty(); }
   std::size_t bytes() const;
 
  private:
-  tsl::robin_map<std::uint64_t, VoxelMoments> voxels_;
+  std::vector<Voxel> voxels_;
 };
 
 /// The segment's moments placed in the map by `frame`: one FusedMoment per segment voxel, in

@@ -117,8 +117,9 @@ class TileMap {
                std::vector<TileSummary> index);
 
   /// Reconciles marked keyframes, oldest mark first, until `max_keyframes` fusions have been
-  /// done (0: all): a keyframe fused into or subtracted from a tile or a segment, or a
-  /// segment placed in or taken out of the tiles, counts one. Distributions come from `cache`.
+  /// done (0: all): a keyframe fused into or subtracted from a tile or a segment (also to
+  /// recompute an evicted segment's moments), or a segment placed in or taken out of the
+  /// tiles, counts one. Distributions come from `cache`.
   /// Returns the fusions done.
   std::size_t update(const KeyframeGraph& graph, DistributionCache& cache,
                      std::size_t max_keyframes);
@@ -239,6 +240,8 @@ class TileMap {
   std::size_t segment_bytes_ = 0;
   std::size_t segment_max_bytes_ = 0;
   std::size_t registered_ = 0;
+  /// Keyframes fused again to recompute evicted segments' moments, since construction.
+  std::size_t recomputed_keyframes_ = 0;
   std::uint64_t generation_ = 0;
 };
 
