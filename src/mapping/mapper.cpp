@@ -103,8 +103,15 @@ struct Mapper::Impl {
     ++loops_since_optimize;
   }
 
-  /// Whether the stream's new keyframe at `path` is due a place search (search_spacing).
+  /// Per stream, the path length at its latest verified loop (loop_spacing).
+  std::vector<double> last_loop;
+
+  /// Whether the stream's new keyframe at `path` is due a place search (search_spacing,
+  /// loop_spacing).
   bool search_due(std::uint32_t stream, double path) {
+    if (config.place.loop_spacing > 0.0 && stream < last_loop.size() && path >= last_loop[stream] &&
+        path - last_loop[stream] < config.place.loop_spacing)
+      return false;
     if (config.place.search_spacing <= 0.0) return true;
     if (last_search.size() <= stream) last_search.resize(stream + 1, -1e300);
     if (std::abs(path - last_search[stream]) < config.place.search_spacing) return false;
@@ -149,6 +156,8 @@ AddStatus Mapper::add_keyframe(Keyframe keyframe, std::vector<LoopEdge>* new_loo
   if (m.search_due(stored.stream, stored.path_length)) {
     if (const auto loop =
             m.detector.detect(index, keyframe.distributions, m.graph, *m.cache, m.stats, m.cpu)) {
+      if (m.last_loop.size() <= stored.stream) m.last_loop.resize(stored.stream + 1, -1e300);
+      m.last_loop[stored.stream] = stored.path_length;
       m.offer_loop(*loop, new_loops);
     }
   }

@@ -155,6 +155,7 @@ TEST(MergeConfirmationConfig, InvalidValuesAreRejected) {
   rejects([](PlaceRecognitionConfig& p) { p.merge_agreement_m = 0.0; });
   rejects([](PlaceRecognitionConfig& p) { p.merge_agreement_per_m = -0.1; });
   rejects([](PlaceRecognitionConfig& p) { p.merge_agreement_deg = 200.0; });
+  rejects([](PlaceRecognitionConfig& p) { p.loop_spacing = -1.0; });
   MapperConfig ok;
   EXPECT_NO_THROW(validate(ok));
 }

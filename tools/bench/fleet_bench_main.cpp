@@ -49,6 +49,7 @@ struct Options {
   int blocks = 10;
   double spacing = 2.0;
   double search_spacing = 10.0;
+  double loop_spacing = 0.0;
   int segment_keyframes = 10;
   int tile_segment_keyframes = 10;
   int merge_confirmations = 2;
@@ -131,6 +132,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(2, 1000));
   app.add_option("--spacing", o.spacing, "metres between keyframes");
   app.add_option("--search-spacing", o.search_spacing, "place_recognition.search_spacing, metres");
+  app.add_option("--loop-spacing", o.loop_spacing, "place_recognition.loop_spacing, metres");
   app.add_option("--segment-keyframes", o.segment_keyframes, "pose_graph.segment_keyframes");
   app.add_option("--tile-segment-keyframes", o.tile_segment_keyframes,
                  "map_tiles.segment_keyframes (0: tiles fused keyframe by keyframe)")
@@ -160,6 +162,7 @@ int main(int argc, char** argv) {
 
   mapping::MapperConfig mapper;
   mapper.place.search_spacing = o.search_spacing;
+  mapper.place.loop_spacing = o.loop_spacing;
   mapper.graph.segment_keyframes = o.segment_keyframes;
   mapper.place.merge_confirmations = o.merge_confirmations;
   mapper.graph.odometry_covariance = mapping::OdometryCovariance::kDistance;
