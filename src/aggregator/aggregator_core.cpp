@@ -56,6 +56,8 @@ void AggregatorCore::replay(const Progress& progress) {
   if (!read_only_) {
     store::KeyframeStore::Batch batch(store_);
     store_.replace_loop_edges(mapper_.loops());
+    store_.replace_pending_merges(mapper_.pending_merges());
+    saved_pending_merges_ = mapper_.pending_merges_version();
     store_.replace_corrected_poses(mapper_.poses());
     store_.clear_map();
     mapper_.take_changed();
@@ -94,7 +96,8 @@ void AggregatorCore::recover_from_tables(const Progress& progress) {
   }
   records.nodes.clear();
   records.nodes.shrink_to_fit();
-  mapper_.restore(std::move(nodes), records.loops);
+  mapper_.restore(std::move(nodes), records.loops, records.pending_merges);
+  saved_pending_merges_ = mapper_.pending_merges_version();
   mapper_.take_changed();
   // The tiles as committed, and the keyframes not fused at their current pose yet.
   const mapping::KeyframeGraph& graph = mapper_.graph();
@@ -248,6 +251,12 @@ void AggregatorCore::save_changes(std::size_t first_new) {
     moved_.push_back(n);
   }
   store_.upsert_corrected_poses(poses);
+  // The loops waiting for a merge's confirmation, when they changed (rarely: only loops
+  // between groups change them), in the same transaction.
+  if (mapper_.pending_merges_version() != saved_pending_merges_) {
+    store_.replace_pending_merges(mapper_.pending_merges());
+    saved_pending_merges_ = mapper_.pending_merges_version();
+  }
 }
 
 }  // namespace litamin2::aggregator

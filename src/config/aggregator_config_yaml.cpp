@@ -76,6 +76,8 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
     tiles.read_range("tile_size", t.tile_size, 1.0, 100'000.0);
     tiles.read_range("move_threshold_m", t.move_threshold_m, 0.0, 1000.0);
     tiles.read_range("move_threshold_deg", t.move_threshold_deg, 0.0, 180.0);
+    tiles.read_range("segment_keyframes", t.segment_keyframes, 0, 100'000);
+    tiles.read_range("segment_cache_mb", t.segment_cache_mb, 0.0, 1'000'000.0);
     tiles.read_range("max_keyframes_per_turn", config.map_tiles.max_keyframes_per_turn, 1,
                      10'000'000);
     tiles.read_range("cache_mb", config.map_tiles.cache_mb, 1, 1'000'000);

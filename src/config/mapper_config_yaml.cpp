@@ -26,6 +26,7 @@ MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
   place.read_enum<PlaceSearch>(
       "search", p.search, {{"indexed", PlaceSearch::kIndexed}, {"linear", PlaceSearch::kLinear}});
   place.read_range("search_spacing", p.search_spacing, 0.0, 1e4);
+  place.read_range("loop_spacing", p.loop_spacing, 0.0, 1e5);
   place.read_range("merge_confirmations", p.merge_confirmations, 1, 100);
   place.read_range("merge_min_separation", p.merge_min_separation, 0.0, 1e5);
   place.read_range("merge_agreement_m", p.merge_agreement_m, 1e-3, 1e4);
@@ -96,6 +97,7 @@ std::string mapper_config_to_yaml(const MapperConfig& c) {
   out << YAML::Key << "search" << YAML::Value
       << (c.place.search == PlaceSearch::kLinear ? "linear" : "indexed");
   out << YAML::Key << "search_spacing" << YAML::Value << c.place.search_spacing;
+  out << YAML::Key << "loop_spacing" << YAML::Value << c.place.loop_spacing;
   out << YAML::Key << "merge_confirmations" << YAML::Value << c.place.merge_confirmations;
   out << YAML::Key << "merge_min_separation" << YAML::Value << c.place.merge_min_separation;
   out << YAML::Key << "merge_agreement_m" << YAML::Value << c.place.merge_agreement_m;

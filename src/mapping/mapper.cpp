@@ -103,8 +103,15 @@ struct Mapper::Impl {
     ++loops_since_optimize;
   }
 
-  /// Whether the stream's new keyframe at `path` is due a place search (search_spacing).
+  /// Per stream, the path length at its latest verified loop (loop_spacing).
+  std::vector<double> last_loop;
+
+  /// Whether the stream's new keyframe at `path` is due a place search (search_spacing,
+  /// loop_spacing).
   bool search_due(std::uint32_t stream, double path) {
+    if (config.place.loop_spacing > 0.0 && stream < last_loop.size() && path >= last_loop[stream] &&
+        path - last_loop[stream] < config.place.loop_spacing)
+      return false;
     if (config.place.search_spacing <= 0.0) return true;
     if (last_search.size() <= stream) last_search.resize(stream + 1, -1e300);
     if (std::abs(path - last_search[stream]) < config.place.search_spacing) return false;
@@ -149,6 +156,8 @@ AddStatus Mapper::add_keyframe(Keyframe keyframe, std::vector<LoopEdge>* new_loo
   if (m.search_due(stored.stream, stored.path_length)) {
     if (const auto loop =
             m.detector.detect(index, keyframe.distributions, m.graph, *m.cache, m.stats, m.cpu)) {
+      if (m.last_loop.size() <= stored.stream) m.last_loop.resize(stored.stream + 1, -1e300);
+      m.last_loop[stored.stream] = stored.path_length;
       m.offer_loop(*loop, new_loops);
     }
   }
@@ -213,7 +222,8 @@ std::size_t Mapper::loops_since_full_pass() const {
   return impl_->checked_since_full_pass;
 }
 
-void Mapper::restore(std::vector<KeyframeNode> nodes, const std::vector<LoopEdge>& loops) {
+void Mapper::restore(std::vector<KeyframeNode> nodes, const std::vector<LoopEdge>& loops,
+                     const std::vector<LoopEdge>& pending_merges) {
   Impl& m = *impl_;
   if (m.graph.size() != 0) throw std::logic_error("Mapper::restore: the mapper is not empty");
   for (KeyframeNode& node : nodes) {
@@ -237,6 +247,24 @@ void Mapper::restore(std::vector<KeyframeNode> nodes, const std::vector<LoopEdge
   }
   m.loops.check_all(m.graph);
   m.checked_since_full_pass = m.loops.size();
+  std::vector<MergeCandidate> pending;
+  for (const LoopEdge& edge : pending_merges) {
+    const std::int64_t from = m.graph.find(edge.from), to = m.graph.find(edge.to);
+    if (from < 0 || to < 0)
+      throw std::invalid_argument("Mapper::restore: a pending merge's keyframe is missing");
+    pending.push_back({edge, static_cast<std::uint32_t>(from), static_cast<std::uint32_t>(to)});
+  }
+  m.merges.restore(pending, m.graph);
+}
+
+std::vector<LoopEdge> Mapper::pending_merges() const {
+  std::vector<LoopEdge> out;
+  for (const MergeCandidate& c : impl_->merges.pending_loops()) out.push_back(c.edge);
+  return out;
+}
+
+std::uint64_t Mapper::pending_merges_version() const {
+  return impl_->merges.version();
 }
 
 bool Mapper::contains(const KeyframeKey& key) const {

@@ -15,6 +15,7 @@ void validate(const MapperConfig& c) {
           "verification.min_fitness must be in [0, 1]");
   require(c.map_voxel_size > 0.0, "map_voxel_size must be positive");
   require(c.place.search_spacing >= 0.0, "place_recognition.search_spacing must be >= 0");
+  require(c.place.loop_spacing >= 0.0, "place_recognition.loop_spacing must be >= 0");
   require(c.place.merge_confirmations >= 1, "place_recognition.merge_confirmations must be >= 1");
   require(c.place.merge_min_separation >= 0.0,
           "place_recognition.merge_min_separation must be >= 0");

@@ -49,6 +49,7 @@ std::vector<MergeCandidate> MergeConfirmation::offer(const MergeCandidate& candi
     const std::uint32_t pb = groups.anchor_of(graph.node(p.to).stream);
     if (pa == pb) {  // joined by other loops since: it has nothing left to confirm
       pending_.erase(pending_.begin() + static_cast<std::ptrdiff_t>(i));
+      ++version_;
       continue;
     }
     if (((pa == ga && pb == gb) || (pa == gb && pb == ga)) &&
@@ -59,14 +60,29 @@ std::vector<MergeCandidate> MergeConfirmation::offer(const MergeCandidate& candi
   if (agreeing.size() + 1 < static_cast<std::size_t>(config_.merge_confirmations)) {
     pending_.push_back(candidate);
     if (pending_.size() > kMaxPending) pending_.pop_front();
+    ++version_;
     return {};
   }
   std::vector<MergeCandidate> out;
   for (std::size_t i : agreeing) out.push_back(pending_[i]);
   for (auto it = agreeing.rbegin(); it != agreeing.rend(); ++it)
     pending_.erase(pending_.begin() + static_cast<std::ptrdiff_t>(*it));
+  if (!agreeing.empty()) ++version_;
   out.push_back(candidate);
   return out;
+}
+
+void MergeConfirmation::restore(const std::vector<MergeCandidate>& pending,
+                                const KeyframeGraph& graph) {
+  const StreamGroups& groups = graph.groups();
+  pending_.clear();
+  for (const MergeCandidate& c : pending) {
+    if (groups.anchor_of(graph.node(c.from).stream) == groups.anchor_of(graph.node(c.to).stream))
+      continue;
+    pending_.push_back(c);
+    if (pending_.size() > kMaxPending) pending_.pop_front();
+  }
+  ++version_;
 }
 
 }  // namespace litamin2::mapping

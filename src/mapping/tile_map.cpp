@@ -15,6 +15,21 @@ Eigen::Isometry3d isometry(const Eigen::Matrix<double, 3, 4>& m) {
   return pose;
 }
 
+Eigen::Matrix<double, 3, 4> top(const Eigen::Isometry3d& pose) {
+  return pose.matrix().topRows<3>();
+}
+
+/// a^-1 b for rigid 3x4 poses.
+Eigen::Matrix<double, 3, 4> relative_pose(const Eigen::Matrix<double, 3, 4>& a,
+                                          const Eigen::Matrix<double, 3, 4>& b) {
+  return top(isometry(a).inverse(Eigen::Isometry) * isometry(b));
+}
+
+Eigen::Matrix<double, 3, 4> compose(const Eigen::Matrix<double, 3, 4>& a,
+                                    const Eigen::Matrix<double, 3, 4>& b) {
+  return top(isometry(a) * isometry(b));
+}
+
 }  // namespace
 
 void validate(const TileMapConfig& c) {
@@ -22,6 +37,8 @@ void validate(const TileMapConfig& c) {
   if (!(c.move_threshold_m >= 0.0)) throw ConfigError("move_threshold_m must be >= 0");
   if (!(c.move_threshold_deg >= 0.0 && c.move_threshold_deg <= 180.0))
     throw ConfigError("move_threshold_deg must be in [0, 180]");
+  if (c.segment_keyframes < 0) throw ConfigError("segment_keyframes must be >= 0");
+  if (!(c.segment_cache_mb >= 0.0)) throw ConfigError("segment_cache_mb must be >= 0");
 }
 
 TileMap::TileMap(const TileMapConfig& config, double voxel_size, Loader loader,
@@ -33,12 +50,14 @@ TileMap::TileMap(const TileMapConfig& config, double voxel_size, Loader loader,
   geometry_.tile_size = config.tile_size;
   geometry_.voxels.voxel_size = voxel_size;
   cos_threshold_ = std::cos(config.move_threshold_deg * M_PI / 180.0);
+  segment_max_bytes_ = static_cast<std::size_t>(config.segment_cache_mb * 1024.0 * 1024.0);
 }
 
 void TileMap::mark(std::uint32_t node) {
   if (queued_.size() <= node) queued_.resize(node + 1, false);
   if (queued_[node]) return;
   queued_[node] = true;
+  ++marked_;
   queue_.push_back(node);
 }
 
@@ -49,11 +68,14 @@ std::int64_t TileMap::map_anchor(const KeyframeGraph& graph) {
 }
 
 bool TileMap::moved(const Fused& f, const Eigen::Isometry3d& pose) const {
-  const Eigen::Matrix<double, 3, 4> m = pose.matrix().topRows<3>();
-  if (m == f.pose) return false;
+  return moved(f.pose, top(pose));
+}
+
+bool TileMap::moved(const Pose34& from, const Pose34& m) const {
+  if (m == from) return false;
   if (config_.move_threshold_m == 0.0 && config_.move_threshold_deg == 0.0) return true;
-  if ((m.col(3) - f.pose.col(3)).norm() > config_.move_threshold_m) return true;
-  const Eigen::Matrix3d relative = f.pose.leftCols<3>().transpose() * m.leftCols<3>();
+  if ((m.col(3) - from.col(3)).norm() > config_.move_threshold_m) return true;
+  const Eigen::Matrix3d relative = from.leftCols<3>().transpose() * m.leftCols<3>();
   return (relative.trace() - 1.0) / 2.0 < cos_threshold_;
 }
 
@@ -74,6 +96,34 @@ void TileMap::restore(const KeyframeGraph& graph,
     index_.emplace(key, std::move(s));
   }
   fused_anchor_ = map_anchor(graph);
+  if (config_.segment_keyframes > 0) {
+    // Each segment's frame is its reference's fused pose (the lowest id fused); the relative
+    // poses follow from the fused ones; the moments are recomputed when the segment moves.
+    segments_.clear();
+    segment_lru_.clear();
+    stats_.segments = 0;
+    segment_bytes_ = 0;
+    registered_ = 0;
+    register_nodes(graph);
+    for (auto& [key, segment] : segments_) {
+      std::int64_t reference = -1;
+      for (std::uint32_t n : segment.nodes) {
+        if (!fused_[n].fused) continue;
+        if (reference < 0 ||
+            graph.node(n).key.id < graph.node(static_cast<std::uint32_t>(reference)).key.id)
+          reference = n;
+      }
+      if (reference < 0) continue;
+      segment.placed = true;
+      segment.reference = static_cast<std::uint32_t>(reference);
+      segment.frame = fused_[segment.reference].pose;
+      for (std::uint32_t n : segment.nodes) {
+        if (fused_[n].fused) fused_[n].relative = relative_pose(segment.frame, fused_[n].pose);
+      }
+      segment.voxels.reset();
+      ++stats_.segments;
+    }
+  }
   const StreamGroups& groups = graph.groups();
   for (std::uint32_t n = 0; n < graph.size(); ++n) {
     const KeyframeNode& node = graph.node(n);
@@ -94,10 +144,37 @@ std::size_t TileMap::update(const KeyframeGraph& graph, DistributionCache& cache
   if (fused_.size() < graph.size()) fused_.resize(graph.size());
   const StreamGroups& groups = graph.groups();
   std::size_t done = 0;
-  while (!queue_.empty() && (max_keyframes == 0 || done < max_keyframes)) {
+  if (config_.segment_keyframes > 0) {
+    register_nodes(graph);
+    ++generation_;
+    while (!queue_.empty() && (max_keyframes == 0 || done < max_keyframes)) {
+      const std::uint32_t n = queue_.front();
+      queue_.pop_front();
+      if (!queued_[n]) continue;  // its segment was reconciled since it was marked
+      const SegmentKey key = segment_key(graph.node(n));
+      Segment& segment = segments_.at(key);
+      // The segment is reconciled whole: its other marks are done too.
+      for (std::uint32_t m : segment.nodes) {
+        if (m < queued_.size() && queued_[m]) {
+          queued_[m] = false;
+          --marked_;
+        }
+      }
+      if (segment.generation == generation_) continue;
+      segment.generation = generation_;
+      // A segment's moments recomputed (evicted) cost its keyframes' fusions too.
+      const std::size_t recomputed = recomputed_keyframes_;
+      done += reconcile(segment, key, graph, cache, anchor);
+      done += recomputed_keyframes_ - recomputed;
+      evict_segments(&key);
+    }
+  }
+  while (config_.segment_keyframes == 0 && !queue_.empty() &&
+         (max_keyframes == 0 || done < max_keyframes)) {
     const std::uint32_t n = queue_.front();
     queue_.pop_front();
     queued_[n] = false;
+    --marked_;
     const KeyframeNode& node = graph.node(n);
     const bool in_map = anchor >= 0 && groups.anchor_of(node.stream) == anchor;
     Fused& f = fused_[n];
@@ -116,11 +193,7 @@ std::size_t TileMap::update(const KeyframeGraph& graph, DistributionCache& cache
       fuse(*distributions, isometry(f.pose), +1);
       ++stats_.added;
     }
-    if (node_changed_.size() <= n) node_changed_.resize(n + 1, false);
-    if (!node_changed_[n]) {
-      node_changed_[n] = true;
-      changed_nodes_.push_back(n);
-    }
+    changed_node(n);
     ++done;
   }
   // Refresh the summaries of the tiles touched; an empty tile leaves the index (and the
@@ -148,9 +221,190 @@ std::size_t TileMap::update(const KeyframeGraph& graph, DistributionCache& cache
   return done;
 }
 
+void TileMap::changed_node(std::uint32_t n) {
+  if (node_changed_.size() <= n) node_changed_.resize(n + 1, false);
+  if (!node_changed_[n]) {
+    node_changed_[n] = true;
+    changed_nodes_.push_back(n);
+  }
+}
+
 void TileMap::fuse(const std::vector<Distribution>& distributions, const Eigen::Isometry3d& pose,
                    int sign) {
-  const std::vector<FusedMoment> moments = fused_moments(distributions, pose, geometry_);
+  apply_moments(fused_moments(distributions, pose, geometry_), sign, 1);
+}
+
+void TileMap::place(const SegmentVoxels& voxels, const Pose34& frame, int sign,
+                    std::int64_t keyframes) {
+  apply_moments(placed_moments(voxels, isometry(frame), geometry_), sign, keyframes);
+  ++stats_.segment_placements;
+}
+
+TileMap::SegmentKey TileMap::segment_key(const KeyframeNode& node) const {
+  return {node.stream, node.key.id / static_cast<std::uint64_t>(config_.segment_keyframes)};
+}
+
+void TileMap::register_nodes(const KeyframeGraph& graph) {
+  for (; registered_ < graph.size(); ++registered_) {
+    const auto n = static_cast<std::uint32_t>(registered_);
+    segments_[segment_key(graph.node(n))].nodes.push_back(n);
+  }
+}
+
+SegmentVoxels& TileMap::segment_voxels(Segment& segment, const SegmentKey& key,
+                                       const KeyframeGraph& graph, DistributionCache& cache) {
+  if (segment.voxels) {
+    segment_lru_.splice(segment_lru_.begin(), segment_lru_, segment.lru);
+    return *segment.voxels;
+  }
+  segment.voxels = std::make_shared<SegmentVoxels>();
+  for (std::uint32_t n : segment.nodes) {
+    const Fused& f = fused_[n];
+    if (!f.fused) continue;
+    ++recomputed_keyframes_;
+    stats_.inconsistent += segment.voxels->apply(
+        *cache.get(graph.node(n).key), isometry(f.relative), geometry_.voxels.voxel_size, +1);
+  }
+  ++stats_.segment_recomputes;
+  segment_lru_.push_front(key);
+  segment.lru = segment_lru_.begin();
+  segment.bytes = 0;
+  return *segment.voxels;
+}
+
+std::size_t TileMap::reconcile(Segment& segment, const SegmentKey& key, const KeyframeGraph& graph,
+                               DistributionCache& cache, std::int64_t anchor) {
+  const StreamGroups& groups = graph.groups();
+  const double voxel = geometry_.voxels.voxel_size;
+  auto in_map = [&](std::uint32_t n) {
+    return anchor >= 0 && groups.anchor_of(graph.node(n).stream) == anchor;
+  };
+  std::int64_t reference = -1;
+  std::int64_t fused_count = 0;
+  for (std::uint32_t n : segment.nodes) {
+    if (fused_[n].fused) ++fused_count;
+    if (!in_map(n)) continue;
+    if (reference < 0 ||
+        graph.node(n).key.id < graph.node(static_cast<std::uint32_t>(reference)).key.id)
+      reference = n;
+  }
+  std::size_t done = 0;
+  // Out of the map, or a new reference (a late keyframe of lower id): take the segment out.
+  if (segment.placed &&
+      (reference < 0 || static_cast<std::uint32_t>(reference) != segment.reference)) {
+    place(segment_voxels(segment, key, graph, cache), segment.frame, -1, fused_count);
+    for (std::uint32_t n : segment.nodes) {
+      if (!fused_[n].fused) continue;
+      fused_[n].fused = false;
+      changed_node(n);
+      ++stats_.subtracted;
+    }
+    segment.placed = false;
+    if (segment.voxels) {
+      segment_lru_.erase(segment.lru);
+      segment_bytes_ -= segment.bytes;
+      segment.voxels.reset();
+      segment.bytes = 0;
+    }
+    fused_count = 0;
+    ++done;
+    --stats_.segments;
+  }
+  if (reference < 0) return done;
+  const auto ref = static_cast<std::uint32_t>(reference);
+
+  if (!segment.placed) {
+    // Fused once in the frame of its reference's pose.
+    segment.placed = true;
+    segment.reference = ref;
+    segment.frame = top(graph.node(ref).pose);
+    segment.voxels = std::make_shared<SegmentVoxels>();
+    segment_lru_.push_front(key);
+    segment.lru = segment_lru_.begin();
+    segment.bytes = 0;
+    std::int64_t members = 0;
+    for (std::uint32_t n : segment.nodes) {
+      if (!in_map(n)) continue;
+      Fused& f = fused_[n];
+      f.pose = top(graph.node(n).pose);
+      f.relative = relative_pose(segment.frame, f.pose);
+      f.fused = true;
+      stats_.inconsistent +=
+          segment.voxels->apply(*cache.get(graph.node(n).key), isometry(f.relative), voxel, +1);
+      changed_node(n);
+      ++stats_.added;
+      ++members;
+      ++done;
+    }
+    place(*segment.voxels, segment.frame, +1, members);
+    ++stats_.segments;
+  } else {
+    // The same reference: re-place the frame if the reference moved, and re-fuse within the
+    // segment only the keyframes that arrived, left or moved relative to it.
+    const Pose34 now = top(graph.node(ref).pose);
+    const bool frame_moved = moved(segment.frame, now);
+    const Pose34 frame = frame_moved ? now : segment.frame;
+    std::vector<std::uint32_t> changed;
+    for (std::uint32_t n : segment.nodes) {
+      const Fused& f = fused_[n];
+      const bool want = in_map(n);
+      if (f.fused != want || (want && moved(compose(frame, f.relative), top(graph.node(n).pose))))
+        changed.push_back(n);
+    }
+    if (!frame_moved && changed.empty()) return done;
+    SegmentVoxels& voxels = segment_voxels(segment, key, graph, cache);
+    place(voxels, segment.frame, -1, fused_count);
+    std::int64_t members = fused_count;
+    for (std::uint32_t n : changed) {
+      Fused& f = fused_[n];
+      const Distributions distributions = cache.get(graph.node(n).key);
+      if (f.fused) {
+        stats_.inconsistent += voxels.apply(*distributions, isometry(f.relative), voxel, -1);
+        f.fused = false;
+        --members;
+        ++stats_.subtracted;
+        ++done;
+      }
+      if (in_map(n)) {
+        f.relative = relative_pose(frame, top(graph.node(n).pose));
+        f.fused = true;
+        stats_.inconsistent += voxels.apply(*distributions, isometry(f.relative), voxel, +1);
+        ++members;
+        ++stats_.added;
+        ++done;
+      }
+      changed_node(n);
+    }
+    segment.frame = frame;
+    for (std::uint32_t n : segment.nodes) {
+      Fused& f = fused_[n];
+      if (!f.fused) continue;
+      f.pose = compose(frame, f.relative);
+      if (frame_moved) changed_node(n);
+    }
+    place(voxels, segment.frame, +1, members);
+    done += 2;
+  }
+  segment_bytes_ -= segment.bytes;
+  segment.bytes = segment.voxels->bytes();
+  segment_bytes_ += segment.bytes;
+  return done;
+}
+
+void TileMap::evict_segments(const SegmentKey* keep) {
+  while (segment_bytes_ > segment_max_bytes_ && !segment_lru_.empty()) {
+    const SegmentKey key = segment_lru_.back();
+    if (keep && key == *keep) break;
+    Segment& segment = segments_.at(key);
+    segment_bytes_ -= segment.bytes;
+    segment.bytes = 0;
+    segment.voxels.reset();
+    segment_lru_.pop_back();
+  }
+}
+
+void TileMap::apply_moments(const std::vector<FusedMoment>& moments, int sign,
+                            std::int64_t keyframes) {
   // A keyframe touches a few tiles: look each up once.
   std::vector<std::pair<TileKey, MapTile*>> seen;
   for (const FusedMoment& m : moments) {
@@ -160,7 +414,7 @@ void TileMap::fuse(const std::vector<Distribution>& distributions, const Eigen::
     }
     if (!tile) {
       tile = &writable(m.tile);
-      tile->count_keyframe(sign);
+      tile->count_keyframe(sign * keyframes);
       seen.emplace_back(m.tile, tile);
     }
     if (!tile->apply(m.voxel, m.moments, sign)) ++stats_.inconsistent;
@@ -256,6 +510,7 @@ TileMapStats TileMap::stats() const {
   s.tiles = index_.size();
   s.tiles_in_memory = tiles_.size();
   s.bytes_in_memory = bytes_;
+  s.segment_bytes = segment_bytes_;
   return s;
 }
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -351,6 +352,7 @@ KeyframeStore::GraphRecords KeyframeStore::load_graph() const {
     out.nodes.push_back(std::move(rec));
   }
   out.loops = load_loop_edges();
+  out.pending_merges = load_pending_merges();
   return out;
 }
 
@@ -583,11 +585,34 @@ void KeyframeStore::replace_loop_edges(const std::vector<mapping::LoopEdge>& edg
   Impl::commit(tx);
 }
 
-void KeyframeStore::write_loop_edges(const std::vector<mapping::LoopEdge>& edges) {
+void KeyframeStore::replace_pending_merges(const std::vector<mapping::LoopEdge>& edges) {
   Impl& im = impl();
-  Statement s(im.db.get(), im.path,
-              "INSERT INTO loop_edges (from_stream, from_id, to_stream, to_id, fitness, rmse, "
-              "relative, information) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)");
+  im.require_writable("replace_pending_merges");
+  if (im.version < 3) {
+    throw StoreError(im.path, "replace_pending_merges: the store is of schema version " +
+                                  std::to_string(im.version) +
+                                  " (open it for writing to upgrade it)");
+  }
+  auto tx = im.transaction();
+  exec(im.db.get(), im.path, "DELETE FROM pending_merges");
+  write_loop_edges(edges, "pending_merges");
+  Impl::commit(tx);
+}
+
+std::vector<mapping::LoopEdge> KeyframeStore::load_pending_merges() const {
+  if (impl().version < 3) return {};
+  return read_loop_edges("pending_merges");
+}
+
+void KeyframeStore::write_loop_edges(const std::vector<mapping::LoopEdge>& edges,
+                                     const char* table) {
+  Impl& im = impl();
+  const std::string sql = std::string("INSERT INTO ") + table +
+                          " (from_stream, from_id, to_stream, to_id, fitness, rmse, "
+                          "relative, information) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)";
+  Statement s(im.db.get(), im.path, sql.c_str());
+  // pending_merges has no key over the edge: refuse the same edge twice here.
+  std::set<std::pair<KeyframeKey, KeyframeKey>> seen;
   for (const mapping::LoopEdge& e : edges) {
     const std::string what = "cannot store loop edge " + describe(e.from) + " -> " + describe(e.to);
     for (const KeyframeKey* key : {&e.from, &e.to}) {
@@ -595,6 +620,8 @@ void KeyframeStore::write_loop_edges(const std::vector<mapping::LoopEdge>& edges
         throw StoreError(im.path, what + ": id exceeds the largest storable id 2^63-1");
       }
     }
+    if (!seen.emplace(e.from, e.to).second)
+      throw StoreError(im.path, what + ": the edge is given twice");
     const std::string relative = encode_pose(e.relative);
     const std::string information = encode_matrix6(e.information);
     ResetOnExit reset{s};
@@ -616,10 +643,17 @@ void KeyframeStore::write_loop_edges(const std::vector<mapping::LoopEdge>& edges
 }
 
 std::vector<mapping::LoopEdge> KeyframeStore::load_loop_edges() const {
+  return read_loop_edges("loop_edges");
+}
+
+std::vector<mapping::LoopEdge> KeyframeStore::read_loop_edges(const char* table) const {
   Impl& im = impl();
-  Statement s(im.db.get(), im.path,
-              "SELECT from_stream, from_id, to_stream, to_id, fitness, rmse, relative, "
-              "information FROM loop_edges ORDER BY rowid");
+  const std::string sql =
+      std::string(
+          "SELECT from_stream, from_id, to_stream, to_id, fitness, rmse, relative, "
+          "information FROM ") +
+      table + " ORDER BY rowid";
+  Statement s(im.db.get(), im.path, sql.c_str());
   std::vector<mapping::LoopEdge> out;
   while (s.step("cannot read the loop edges")) {
     mapping::LoopEdge e;

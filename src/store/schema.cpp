@@ -79,8 +79,27 @@ CREATE TABLE tiles (
   PRIMARY KEY (ix, iy)
 );
 )sql";
-constexpr std::array<const char*, 5> kTables = {"keyframes", "loop_edges", "corrected_poses",
-                                                "nodes", "tiles"};
+// Version 3: the verified loops between two groups that wait for their merge's confirmation
+// (mapping/merge_confirmation.hpp), oldest first (seq), so that a restart keeps them.
+constexpr const char* kSchemaV3 = R"sql(
+CREATE TABLE pending_merges (
+  seq INTEGER PRIMARY KEY,
+  from_stream TEXT NOT NULL,
+  from_id INTEGER NOT NULL,
+  to_stream TEXT NOT NULL,
+  to_id INTEGER NOT NULL,
+  fitness REAL NOT NULL,
+  rmse REAL NOT NULL,
+  relative BLOB NOT NULL,
+  information BLOB NOT NULL
+);
+)sql";
+constexpr std::array<const char*, 6> kTables = {"keyframes", "loop_edges", "corrected_poses",
+                                                "nodes",     "tiles",      "pending_merges"};
+/// Tables of each version (kTables' first n).
+std::size_t tables_of_version(std::int64_t version) {
+  return version >= 3 ? 6 : version == 2 ? 5 : 3;
+}
 
 std::string hex32(std::uint32_t v) {
   char buf[16];
@@ -103,8 +122,8 @@ void check_identity(const std::string& path, std::uint32_t application_id,
                          hex32(application_id) + ", a keyframe store has " +
                          hex32(KeyframeStore::kApplicationId) + ")");
   }
-  if (user_version != KeyframeStore::kSchemaVersion &&
-      user_version != KeyframeStore::kOldestSchemaVersion) {
+  if (user_version > KeyframeStore::kSchemaVersion ||
+      user_version < KeyframeStore::kOldestSchemaVersion) {
     throw StoreError(path, "keyframe store schema version " + std::to_string(user_version) +
                                (user_version > KeyframeStore::kSchemaVersion
                                     ? " is newer than this build's "
@@ -180,8 +199,7 @@ void check_is_keyframe_store(const std::string& path) {
     user_version = query_int(db.get(), path, "PRAGMA user_version");
     Statement tables(db.get(), path,
                      "SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = ?");
-    const std::size_t tables_of_version = user_version >= 2 ? kTables.size() : 3;
-    for (std::size_t t = 0; t < tables_of_version; ++t) {
+    for (std::size_t t = 0; t < tables_of_version(user_version); ++t) {
       const char* table = kTables[t];
       ResetOnExit reset{tables};
       sqlite3_bind_text(tables.get(), 1, table, -1, SQLITE_STATIC);
@@ -214,6 +232,7 @@ void create_schema(sqlite3* db, const std::string& path) {
   }
   exec(db, path, kSchema);
   exec(db, path, kSchemaV2);
+  exec(db, path, kSchemaV3);
   exec(db, path,
        ("PRAGMA application_id = " + std::to_string(KeyframeStore::kApplicationId)).c_str());
   exec(db, path,
@@ -226,12 +245,16 @@ int schema_version(sqlite3* db, const std::string& path) {
 }
 
 void migrate_schema(sqlite3* db, const std::string& path) {
-  if (schema_version(db, path) != 1) return;
+  const int version = schema_version(db, path);
+  if (version >= KeyframeStore::kSchemaVersion) return;
   Transaction tx(db, path);
-  exec(db, path, kSchemaV2);
-  exec(db, path,
-       "INSERT INTO nodes (stream, id, stamp_ns, voxel_size, pose, covariance, descriptor) "
-       "SELECT stream, id, stamp_ns, voxel_size, pose, covariance, NULL FROM keyframes");
+  if (version < 2) {
+    exec(db, path, kSchemaV2);
+    exec(db, path,
+         "INSERT INTO nodes (stream, id, stamp_ns, voxel_size, pose, covariance, descriptor) "
+         "SELECT stream, id, stamp_ns, voxel_size, pose, covariance, NULL FROM keyframes");
+  }
+  exec(db, path, kSchemaV3);
   exec(db, path,
        ("PRAGMA user_version = " + std::to_string(KeyframeStore::kSchemaVersion)).c_str());
   tx.commit();

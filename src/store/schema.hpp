@@ -1,8 +1,8 @@
 #pragma once
 /// The keyframe store's file format: the SQLite schema (tables keyframes, loop_edges,
-/// corrected_poses, nodes, tiles) with the store's application_id and schema version, its creation,
-/// and the checks that refuse a file that is not a keyframe store before anything writes to it.
-/// Private to the store.
+/// corrected_poses, nodes, tiles, pending_merges) with the store's application_id and schema
+/// version, its creation, and the checks that refuse a file that is not a keyframe store before
+/// anything writes to it. Private to the store.
 
 #include <cstdint>
 #include <string>
@@ -25,8 +25,9 @@ void create_schema(sqlite3* db, const std::string& path);
 /// The file's schema version (PRAGMA user_version).
 int schema_version(sqlite3* db, const std::string& path);
 
-/// Upgrades a version-1 store to this build's version in one transaction: the nodes table
-/// (filled from the keyframes, descriptors NULL) and the tiles table. No-op on version 2.
+/// Upgrades an older store to this build's version in one transaction: from version 1 the
+/// nodes table (filled from the keyframes, descriptors NULL) and the tiles table, from 1 or 2
+/// the pending_merges table (empty). No-op on the current version.
 void migrate_schema(sqlite3* db, const std::string& path);
 
 }  // namespace litamin2::store

@@ -217,3 +217,54 @@ TEST(AggregatorCore, TheMapInABoxIsTheWholeMapCutToTheBoxReadFromTheTilesThatMee
     EXPECT_LE(d.mean.y(), box.max_y);
   }
 }
+
+TEST(AggregatorCore, AReopenedStoreKeepsTheLoopsWaitingForAMergesConfirmation) {
+  // Two vehicles that meet: the first verified loop between them waits for a second agreeing
+  // one (merge_confirmation.hpp). The store is closed right after it (as a kill -9 would: every
+  // batch is committed) and reopened: the waiting loop is there, and the rest of the drive
+  // merges the two frames with the same loops as an uninterrupted run.
+  mapping::MapperConfig config = street_config();
+  // As mapping_mapper_test's TwoVehicles: b drives the street back later, from its far end
+  // (its frame 60 m and 180 degrees from a's); they find each other over 18 m of it.
+  config.place.merge_min_separation = 10.0;
+  const auto truth = out_and_back();
+  const auto a = drive("a", {truth.begin(), truth.begin() + 21}, 0.0, 1);
+  auto b = drive("b", {truth.begin() + 21, truth.end()}, 0.0, 2);
+  for (auto& kf : b) kf.stamp.nanoseconds += 1000000000;
+  std::vector<Keyframe> all = a;
+  all.insert(all.end(), b.begin(), b.end());
+  const std::string uninterrupted_path = fresh_store("pending_uninterrupted.db");
+  const std::string path = fresh_store("pending.db");
+  AggregatorCore uninterrupted(uninterrupted_path, store::OpenMode::kCreateIfMissing, config);
+  std::vector<mapping::LoopEdge> pending;
+  std::size_t fed = 0;
+  {
+    AggregatorCore core(path, store::OpenMode::kCreateIfMissing, config);
+    for (; fed < all.size() && pending.empty(); ++fed) {
+      std::vector<Keyframe> one{all[fed]}, same{all[fed]};
+      core.ingest(one);
+      uninterrupted.ingest(same);
+      pending = core.mapper().pending_merges();
+    }
+    ASSERT_FALSE(pending.empty()) << "no loop between the vehicles waited for a confirmation";
+    EXPECT_NE(core.mapper().pose({"b", 0})->frame, "a");
+  }
+  AggregatorCore reopened(path, store::OpenMode::kMustExist, config);
+  const std::vector<mapping::LoopEdge> restored = reopened.mapper().pending_merges();
+  ASSERT_EQ(restored.size(), pending.size());
+  for (std::size_t i = 0; i < pending.size(); ++i) {
+    EXPECT_EQ(restored[i].from, pending[i].from);
+    EXPECT_EQ(restored[i].to, pending[i].to);
+    EXPECT_TRUE(restored[i].relative.matrix() == pending[i].relative.matrix());
+    EXPECT_TRUE(restored[i].information == pending[i].information);
+    EXPECT_EQ(restored[i].fitness, pending[i].fitness);
+  }
+  for (; fed < all.size(); ++fed) {
+    std::vector<Keyframe> one{all[fed]}, same{all[fed]};
+    reopened.ingest(one);
+    uninterrupted.ingest(same);
+  }
+  EXPECT_EQ(uninterrupted.mapper().pose({"b", 0})->frame, "a") << "the vehicles never merged";
+  EXPECT_EQ(reopened.mapper().pose({"b", 0})->frame, "a");
+  EXPECT_EQ(reopened.mapper().loops().size(), uninterrupted.mapper().loops().size());
+}

@@ -18,6 +18,7 @@ TEST(MappingConfig, ShippedFileHoldsTheDefaults) {
 TEST(MappingConfig, EmittedYamlReadsBack) {
   MapperConfig config;
   config.place.proximity_radius = 7.5;
+  config.place.loop_spacing = 40.0;
   config.verification.min_fitness = 0.7;
   config.verification.max_isotropy = 0.05;
   config.graph.threads = 2;
@@ -44,6 +45,8 @@ TEST(MappingConfig, BadKeysAndValuesAreNamed) {
             std::string::npos);
   EXPECT_NE(message("pose_graph: {threads: many}").find("pose_graph.threads"), std::string::npos);
   EXPECT_NE(message("map_voxel_size: -1").find("map_voxel_size"), std::string::npos);
+  EXPECT_NE(message("place_recognition: {loop_spacing: -1}").find("place_recognition.loop_spacing"),
+            std::string::npos);
   EXPECT_NE(message("pose_graph: {odometry_covariance: hessian}")
                 .find("pose_graph.odometry_covariance: 'hessian' is not one of: distance, tracker"),
             std::string::npos);

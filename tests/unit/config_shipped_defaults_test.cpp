@@ -134,6 +134,8 @@ TEST(ConfigShippedDefaults, AggregatorDdsOnlyConfigBehavesAsTheShippedFile) {
   EXPECT_EQ(shipped.map_tiles.tiles.tile_size, minimal.map_tiles.tiles.tile_size);
   EXPECT_EQ(shipped.map_tiles.tiles.move_threshold_m, minimal.map_tiles.tiles.move_threshold_m);
   EXPECT_EQ(shipped.map_tiles.tiles.move_threshold_deg, minimal.map_tiles.tiles.move_threshold_deg);
+  EXPECT_EQ(shipped.map_tiles.tiles.segment_keyframes, minimal.map_tiles.tiles.segment_keyframes);
+  EXPECT_EQ(shipped.map_tiles.tiles.segment_cache_mb, minimal.map_tiles.tiles.segment_cache_mb);
   EXPECT_EQ(shipped.map_tiles.max_keyframes_per_turn, minimal.map_tiles.max_keyframes_per_turn);
   EXPECT_EQ(shipped.map_tiles.cache_mb, minimal.map_tiles.cache_mb);
   EXPECT_EQ(shipped.full_pass.max_duty, minimal.full_pass.max_duty);

@@ -95,6 +95,31 @@ TEST(MappingMapper, LoopsCorrectADriftingDrive) {
   EXPECT_GT(without.global_map().size(), 100u);
 }
 
+TEST(MappingMapper, LoopSpacingSpacesAStreamsLoopsAlongItsPath) {
+  // place_recognition.loop_spacing: after a verified loop the stream searches again only this
+  // far along its path, so its loops (by their newer keyframe) are at least that far apart.
+  const auto keyframes = drive("a", out_and_back(), 0.05, 1);
+  MapperConfig spaced_config = street_config();
+  spaced_config.place.loop_spacing = 15.0;
+  Mapper every(street_config()), spaced(spaced_config);
+  for (const auto& kf : keyframes) {
+    every.add_keyframe(kf);
+    spaced.add_keyframe(kf);
+  }
+  every.optimize();
+  spaced.optimize();
+  ASSERT_GT(spaced.loops().size(), 1u);
+  EXPECT_LT(spaced.loops().size(), every.loops().size());
+  std::vector<double> paths;
+  for (const LoopEdge& loop : spaced.loops()) {
+    const KeyframeKey& newer = loop.from.id > loop.to.id ? loop.from : loop.to;
+    paths.push_back(spaced.node(newer)->path_length);
+  }
+  std::sort(paths.begin(), paths.end());
+  for (std::size_t i = 1; i < paths.size(); ++i)
+    EXPECT_GE(paths[i] - paths[i - 1], spaced_config.place.loop_spacing - 1e-9) << i;
+}
+
 /// Two vehicles on the street: b drives it later, starting at the far end, so its odometry
 /// frame (its own first pose) is 60 m and 180 degrees from a's. Keyframes are given to the
 /// mapper in `arrival` order, all of one vehicle and then all of the other.

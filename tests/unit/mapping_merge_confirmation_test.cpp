@@ -155,6 +155,33 @@ TEST(MergeConfirmationConfig, InvalidValuesAreRejected) {
   rejects([](PlaceRecognitionConfig& p) { p.merge_agreement_m = 0.0; });
   rejects([](PlaceRecognitionConfig& p) { p.merge_agreement_per_m = -0.1; });
   rejects([](PlaceRecognitionConfig& p) { p.merge_agreement_deg = 200.0; });
+  rejects([](PlaceRecognitionConfig& p) { p.loop_spacing = -1.0; });
   MapperConfig ok;
   EXPECT_NO_THROW(validate(ok));
+}
+
+TEST_F(MergeConfirmationTest, RestoredPendingLoopsConfirmAsTheOriginalsWould) {
+  // A restart: the pending loop comes back from the store and the second agreeing loop
+  // confirms the merge with it, as without the restart.
+  PlaceRecognitionConfig config;
+  MergeConfirmation before(config);
+  EXPECT_TRUE(before.offer(loop(10, 10), graph).empty());
+  const std::uint64_t version = before.version();
+  EXPECT_GT(version, 0u);
+  MergeConfirmation after(config);
+  after.restore({before.pending_loops().begin(), before.pending_loops().end()}, graph);
+  ASSERT_EQ(after.pending(), 1u);
+  const std::vector<MergeCandidate> confirmed =
+      after.offer(loop(38, 38, planar(1.0, 0.0, 0.5)), graph);
+  ASSERT_EQ(confirmed.size(), 2u);
+  EXPECT_EQ(confirmed[0].edge.from.id, 10u);
+  EXPECT_EQ(before.version(), version) << "nothing changed the original";
+}
+
+TEST_F(MergeConfirmationTest, RestoringDropsLoopsWhoseGroupsWereJoined) {
+  PlaceRecognitionConfig config;
+  MergeConfirmation merges(config);
+  graph.groups().join(graph.groups().index("a"), graph.groups().index("b"));
+  merges.restore({loop(10, 10)}, graph);
+  EXPECT_EQ(merges.pending(), 0u);
 }

@@ -2,11 +2,16 @@
 // groups join the map, the map frame moves to another group, loops move keyframes and updates
 // are deferred (a small budget per call) and tiles evicted and read back, every tile equals a
 // full rebuild (every keyframe fused once, at the pose the incremental map holds it at) to
-// rounding; with a zero move threshold the tiles hold the global map's distributions.
+// rounding; with a zero move threshold the tiles hold the global map's distributions. In
+// segment mode (TileMapConfig::segment_keyframes > 0, the default) the full rebuild fuses every
+// segment once (reference = its lowest id, frame = the reference's fused pose, each keyframe at
+// its fused pose relative to it) and places it; its fused mass (count, first and second
+// moments about the map origin) equals that of the keyframes fused one by one.
 
 #include "litamin2/core/config_error.hpp"
 #include "litamin2/core/voxel_key.hpp"
 #include "litamin2/mapping/mapper.hpp"
+#include "litamin2/mapping/segment_voxels.hpp"
 #include "litamin2/mapping/tile_map.hpp"
 #include "support/street_drive.hpp"
 
@@ -65,6 +70,61 @@ std::map<TileKey, MapTile> full_rebuild(const Mapper& mapper, const TileMap& map
   return tiles;
 }
 
+/// Segment mode: every segment fused once from the poses `map` holds its keyframes at.
+std::map<TileKey, MapTile> segment_rebuild(const Mapper& mapper, const TileMap& map,
+                                           int segment_keyframes) {
+  const KeyframeGraph& graph = mapper.graph();
+  std::map<std::pair<std::uint32_t, std::uint64_t>, std::vector<std::uint32_t>> segments;
+  for (const auto& [key, n] : graph.by_key()) {
+    if (!map.fused_pose(n)) continue;
+    segments[{graph.node(n).stream, key.id / static_cast<std::uint64_t>(segment_keyframes)}]
+        .push_back(n);
+  }
+  std::map<TileKey, MapTile> tiles;
+  for (const auto& [segment, nodes] : segments) {
+    std::uint32_t reference = nodes.front();
+    for (std::uint32_t n : nodes) {
+      if (graph.node(n).key.id < graph.node(reference).key.id) reference = n;
+    }
+    const Eigen::Isometry3d frame = *map.fused_pose(reference);
+    SegmentVoxels voxels;
+    for (std::uint32_t n : nodes) {
+      const Eigen::Isometry3d relative = frame.inverse(Eigen::Isometry) * *map.fused_pose(n);
+      EXPECT_EQ(voxels.apply(*mapper.cache().get(graph.node(n).key), relative,
+                             map.geometry().voxels.voxel_size, +1),
+                0u);
+    }
+    std::map<TileKey, bool> seen;
+    for (const FusedMoment& m : placed_moments(voxels, frame, map.geometry())) {
+      MapTile& t = tiles.try_emplace(m.tile, m.tile).first->second;
+      if (!seen[m.tile]) t.count_keyframe(static_cast<std::int64_t>(nodes.size()));
+      seen[m.tile] = true;
+      EXPECT_TRUE(t.apply(m.voxel, m.moments, +1));
+    }
+  }
+  return tiles;
+}
+
+/// Count, sum of points and sum of their outer products (about the map origin) of the tiles.
+struct Mass {
+  double count = 0.0;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d sum_sq = Eigen::Matrix3d::Zero();
+};
+Mass mass_of(const std::map<TileKey, MapTile>& tiles) {
+  Mass m;
+  for (const auto& [key, tile] : tiles) {
+    for (const MapTile::Voxel& v : tile.voxels()) {
+      const VoxelMoments about_origin = v.moments.transformed(
+          Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+      m.count += about_origin.count;
+      m.sum += about_origin.sum;
+      m.sum_sq += about_origin.second_moment();
+    }
+  }
+  return m;
+}
+
 void expect_same_distributions(const std::vector<Distribution>& a,
                                const std::vector<Distribution>& b, const std::string& what) {
   ASSERT_EQ(a.size(), b.size()) << what;
@@ -75,8 +135,10 @@ void expect_same_distributions(const std::vector<Distribution>& a,
   }
 }
 
-void expect_equals_full_rebuild(const Mapper& mapper, TileMap& map) {
-  const std::map<TileKey, MapTile> full = full_rebuild(mapper, map);
+void expect_equals_full_rebuild(const Mapper& mapper, TileMap& map, int segment_keyframes) {
+  const std::map<TileKey, MapTile> full = segment_keyframes > 0
+                                              ? segment_rebuild(mapper, map, segment_keyframes)
+                                              : full_rebuild(mapper, map);
   ASSERT_EQ(map.index().size(), full.size());
   std::size_t distributions = 0;
   for (const auto& [key, tile] : full) {
@@ -116,9 +178,12 @@ void run(Mapper& mapper, TileMap& map, std::size_t budget,
 
 }  // namespace
 
-TEST(MappingTileMap, IncrementalUpdatesEqualAFullRebuild) {
+class MappingTileMapModes : public ::testing::TestWithParam<int> {};
+
+TEST_P(MappingTileMapModes, IncrementalUpdatesEqualAFullRebuild) {
   Mapper mapper(street_config());
   TileMapConfig config;
+  config.segment_keyframes = GetParam();
   config.tile_size = 20.0;  // the street spans several tiles
   // Thresholds below the loops' corrections of this short drive, so that many keyframes are
   // moved in the map (subtracted and added again), not only added.
@@ -136,12 +201,65 @@ TEST(MappingTileMap, IncrementalUpdatesEqualAFullRebuild) {
   // keyframes moved with the loops.
   EXPECT_GT(s.subtracted, 20u);
   EXPECT_GT(s.added, s.subtracted);
-  expect_equals_full_rebuild(mapper, map);
+  if (config.segment_keyframes > 0) {
+    EXPECT_GT(s.segments, 3u);
+    // Segments were re-placed whole (frame moved), not only built.
+    EXPECT_GT(s.segment_placements, 2 * s.segments);
+  }
+  expect_equals_full_rebuild(mapper, map, config.segment_keyframes);
 }
 
-TEST(MappingTileMap, EvictedTilesReadBackGiveTheSameMap) {
+TEST(MappingTileMap, SegmentsHoldTheMassOfTheKeyframesFusedOneByOne) {
+  // A placed segment's count and first and second moments are its keyframes' at the same
+  // poses (a rigid transform of every point); only the voxel a point lands in may differ.
+  Mapper mapper(street_config());
+  TileMapConfig config;
+  config.tile_size = 20.0;
+  config.move_threshold_m = 0.05;
+  config.move_threshold_deg = 0.05;
+  ASSERT_GT(config.segment_keyframes, 0) << "segments are the default";
+  TileMap map(config, mapper.config().map_voxel_size);
+  run(mapper, map, 2);
+  std::map<TileKey, MapTile> incremental;
+  for (const auto& [key, summary] : map.index()) incremental.emplace(key, *map.tile(key));
+  const Mass a = mass_of(incremental);
+  const Mass b = mass_of(full_rebuild(mapper, map));
+  ASSERT_GT(b.count, 1000.0);
+  EXPECT_EQ(a.count, b.count);
+  EXPECT_LT((a.sum - b.sum).norm(), 1e-9 * b.sum.norm());
+  EXPECT_LT((a.sum_sq - b.sum_sq).norm(), 1e-9 * b.sum_sq.norm());
+}
+
+TEST(MappingTileMap, EvictedSegmentsAreRecomputedToTheSameMap) {
+  // A segment cache of 0 bytes: every segment's moments are recomputed from its keyframes
+  // whenever it moves; the tiles come out as with the moments kept.
   Mapper a(street_config()), b(street_config());
   TileMapConfig config;
+  config.tile_size = 20.0;
+  config.move_threshold_m = 0.05;
+  config.move_threshold_deg = 0.05;
+  TileMap kept(config, a.config().map_voxel_size);
+  config.segment_cache_mb = 0.0;
+  TileMap recomputed(config, b.config().map_voxel_size);
+  run(a, kept, 2);
+  run(b, recomputed, 2);
+  EXPECT_EQ(kept.stats().segment_recomputes, 0u);
+  EXPECT_GT(recomputed.stats().segment_recomputes, 10u);
+  EXPECT_EQ(recomputed.stats().segment_bytes, 0u);
+  EXPECT_EQ(recomputed.stats().inconsistent, 0u);
+  ASSERT_EQ(recomputed.index().size(), kept.index().size());
+  for (const auto& [key, summary] : kept.index()) {
+    expect_same_distributions(recomputed.tile(key)->distributions(recomputed.geometry()),
+                              kept.tile(key)->distributions(kept.geometry()),
+                              "tile " + std::to_string(key.ix) + "," + std::to_string(key.iy));
+  }
+  expect_equals_full_rebuild(b, recomputed, config.segment_keyframes);
+}
+
+TEST_P(MappingTileMapModes, EvictedTilesReadBackGiveTheSameMap) {
+  Mapper a(street_config()), b(street_config());
+  TileMapConfig config;
+  config.segment_keyframes = GetParam();
   config.tile_size = 20.0;
   TileMap unbounded(config, a.config().map_voxel_size);
   std::map<TileKey, MapTile> persisted;
@@ -177,6 +295,7 @@ TEST(MappingTileMap, EvictedTilesReadBackGiveTheSameMap) {
 TEST(MappingTileMap, WithoutMoveThresholdTilesHoldTheGlobalMap) {
   Mapper mapper(street_config());
   TileMapConfig config;
+  config.segment_keyframes = 0;  // keyframe by keyframe: the global map's voxels exactly
   config.tile_size = 20.0;
   config.move_threshold_m = 0.0;
   config.move_threshold_deg = 0.0;
@@ -202,13 +321,14 @@ TEST(MappingTileMap, WithoutMoveThresholdTilesHoldTheGlobalMap) {
   EXPECT_GT(tiled, 100u);
 }
 
-TEST(MappingTileMap, KeyframesStayFusedWithinTheMoveThresholdOfTheirPoses) {
+TEST_P(MappingTileMapModes, KeyframesStayFusedWithinTheMoveThresholdOfTheirPoses) {
   // The default thresholds (0.3 m, 0.3 degrees): moves below them leave a keyframe fused
   // where it was, so the map differs from one fused at the current poses by at most that;
   // every keyframe in the map is within it after the updates, and the loops' corrections
   // (larger) were fused.
   Mapper mapper(street_config());
   TileMapConfig config;
+  config.segment_keyframes = GetParam();
   config.tile_size = 20.0;
   TileMap map(config, mapper.config().map_voxel_size);
   run(mapper, map, 2);
@@ -224,8 +344,8 @@ TEST(MappingTileMap, KeyframesStayFusedWithinTheMoveThresholdOfTheirPoses) {
               config.move_threshold_deg * M_PI / 180.0 + 1e-12);
   }
   EXPECT_EQ(in_map, mapper.graph().size());
-  EXPECT_GT(map.stats().subtracted, 0u);
-  expect_equals_full_rebuild(mapper, map);
+  EXPECT_GT(map.stats().subtracted + map.stats().segment_placements, 0u);
+  expect_equals_full_rebuild(mapper, map, config.segment_keyframes);
 }
 
 TEST(MappingTileMap, AMoveThresholdOfAVoxelOrMoreIsRejected) {
@@ -236,4 +356,13 @@ TEST(MappingTileMap, AMoveThresholdOfAVoxelOrMoreIsRejected) {
   EXPECT_NO_THROW(TileMap(config, 3.0));
   config.move_threshold_deg = -1.0;
   EXPECT_THROW(TileMap(config, 3.0), ConfigError);
+  config.move_threshold_deg = 0.3;
+  config.segment_keyframes = -1;
+  EXPECT_THROW(TileMap(config, 3.0), ConfigError);
+  config.segment_keyframes = 10;
+  config.segment_cache_mb = -1.0;
+  EXPECT_THROW(TileMap(config, 3.0), ConfigError);
 }
+
+// 0: keyframe by keyframe; 4: segments (the street drive has ~40 keyframes a stream).
+INSTANTIATE_TEST_SUITE_P(KeyframesAndSegments, MappingTileMapModes, ::testing::Values(0, 4));

@@ -271,6 +271,38 @@ TEST(KeyframeStore, LoopEdgesRoundTripAndAreReplacedAsAWhole) {
   expect_same_edges(store.load_loop_edges(), first);
 }
 
+TEST(KeyframeStore, PendingMergesRoundTripInOrderAndAreReplacedAsAWhole) {
+  const fs::path path = temp_dir() / "store.db";
+  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing);
+  EXPECT_TRUE(store.load_pending_merges().empty());
+  const std::vector<LoopEdge> first = {make_edge({"b", 2}, {"a", 40}, 1),
+                                       make_edge({"a", 0}, {"b", 7}, 2)};
+  store.replace_pending_merges(first);
+  expect_same_edges(store.load_pending_merges(), first);
+  EXPECT_TRUE(store.load_loop_edges().empty()) << "pending merges are not loop edges";
+  const std::vector<LoopEdge> duplicated = {make_edge({"c", 1}, {"d", 5}, 4),
+                                            make_edge({"c", 1}, {"d", 5}, 5)};
+  expect_store_error([&] { store.replace_pending_merges(duplicated); }, path, "given twice");
+  expect_same_edges(store.load_pending_merges(), first);
+  store = KeyframeStore::open(path.string(), OpenMode::kMustExist);
+  expect_same_edges(store.load_pending_merges(), first);
+  expect_same_edges(store.load_graph().pending_merges, first);
+}
+
+TEST(KeyframeStore, AVersion2StoreIsReadWithoutPendingMergesAndUpgradedForWriting) {
+  const fs::path path = temp_dir() / "v2.db";
+  { KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing); }
+  raw_sql(path, "DROP TABLE pending_merges; PRAGMA user_version = 2;");
+  {
+    KeyframeStore read_only = KeyframeStore::open(path.string(), OpenMode::kReadOnly);
+    EXPECT_TRUE(read_only.load_pending_merges().empty());
+  }
+  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::kMustExist);
+  const std::vector<LoopEdge> edges = {make_edge({"a", 0}, {"b", 7}, 2)};
+  store.replace_pending_merges(edges);
+  expect_same_edges(store.load_pending_merges(), edges);
+}
+
 TEST(KeyframeStore, CorrectedPosesRoundTripOrderedByKeyAndAreReplacedAsAWhole) {
   const fs::path path = temp_dir() / "store.db";
   KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing);
@@ -513,9 +545,9 @@ TEST(KeyframeStore, OtherApplicationsAndSchemasAreRefusedAndLeftUnchanged) {
   expect_refused_unchanged(dir / "plain.db", "another application (application_id 0x00000000");
 
   std::string newer = bytes;
-  newer.replace(60, 4, std::string("\x00\x00\x00\x03", 4));
+  newer.replace(60, 4, std::string("\x00\x00\x00\x04", 4));
   write_bytes(dir / "newer.db", newer);
-  expect_refused_unchanged(dir / "newer.db", "schema version 3 is newer");
+  expect_refused_unchanged(dir / "newer.db", "schema version 4 is newer");
 
   // Our header, but a table dropped.
   write_bytes(dir / "no_table.db", bytes);

@@ -49,7 +49,9 @@ struct Options {
   int blocks = 10;
   double spacing = 2.0;
   double search_spacing = 10.0;
+  double loop_spacing = 0.0;
   int segment_keyframes = 10;
+  int tile_segment_keyframes = 10;
   int merge_confirmations = 2;
   std::size_t cache_mb = 512;
   double full_pass_duty = 0.25;
@@ -130,7 +132,11 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(2, 1000));
   app.add_option("--spacing", o.spacing, "metres between keyframes");
   app.add_option("--search-spacing", o.search_spacing, "place_recognition.search_spacing, metres");
+  app.add_option("--loop-spacing", o.loop_spacing, "place_recognition.loop_spacing, metres");
   app.add_option("--segment-keyframes", o.segment_keyframes, "pose_graph.segment_keyframes");
+  app.add_option("--tile-segment-keyframes", o.tile_segment_keyframes,
+                 "map_tiles.segment_keyframes (0: tiles fused keyframe by keyframe)")
+      ->check(CLI::Range(0, 100000));
   app.add_option("--merge-confirmations", o.merge_confirmations,
                  "place_recognition.merge_confirmations (1: two groups join at their first loop)")
       ->check(CLI::Range(1, 100));
@@ -156,6 +162,7 @@ int main(int argc, char** argv) {
 
   mapping::MapperConfig mapper;
   mapper.place.search_spacing = o.search_spacing;
+  mapper.place.loop_spacing = o.loop_spacing;
   mapper.graph.segment_keyframes = o.segment_keyframes;
   mapper.place.merge_confirmations = o.merge_confirmations;
   mapper.graph.odometry_covariance = mapping::OdometryCovariance::kDistance;
@@ -169,6 +176,7 @@ int main(int argc, char** argv) {
   config.full_pass.on_stop = false;
   config.ingest.max_batch = o.vehicles;
   config.publish.poses_chunk_keyframes = o.poses_chunk;
+  config.map_tiles.tiles.segment_keyframes = o.tile_segment_keyframes;
   core_options.tiles = config.map_tiles.tiles;
   core_options.tile_cache_bytes = static_cast<std::size_t>(config.map_tiles.cache_mb) << 20;
 
@@ -217,6 +225,7 @@ int main(int argc, char** argv) {
   double background_cpu_s = 0.0;
   CountingSink sink;
   std::size_t tiles = 0, map_pending = 0, diverged = 0;
+  mapping::TileMapStats tile_stats;
   const auto wall_start = Clock::now();
   {
     AggregatorCore core(o.store, store::OpenMode::kCreateIfMissing, mapper, {}, {}, core_options);
@@ -226,6 +235,7 @@ int main(int argc, char** argv) {
     mapping::MapperCpu last_mc;
     mapping::DistributionCacheStats last_cache;
     mapping::MapperStats last_ms;
+    mapping::TileMapStats last_ts;
     std::size_t reported_keyframes = 0;
     double last_poses_cpu = 0.0, last_summary_cpu = 0.0, last_tiles_cpu = 0.0;
     // On the mapping thread after each turn: its CPU, loop latencies and a report per 10k.
@@ -247,6 +257,7 @@ int main(int argc, char** argv) {
       const mapping::DistributionCacheStats cs = core.mapper().cache().stats();
       const mapping::MapperStats ms = core.mapper().stats();
       const WorkerStatus ws = worker.status();
+      const mapping::TileMapStats ts = core.tiles().stats();
       const double k = 1000.0 / static_cast<double>(keyframes - reported_keyframes);
       std::fprintf(
           stderr,
@@ -254,7 +265,8 @@ int main(int argc, char** argv) {
           "proximity %.2f, verification %.2f, local optimisation %.2f, save graph %.2f, "
           "full pass apply %.2f, tiles fuse %.2f store %.2f, publish poses %.2f summary "
           "%.2f tiles %.2f; cache misses %zu of %zu (loads %.2f); %zu candidates, %zu "
-          "verified, %zu local solves refused (ran off); %zu tiles, %zu keyframes to fuse\n",
+          "verified, %zu local solves refused (ran off); %zu tiles, %zu keyframes to fuse; "
+          "tile segments %zu, placements %zu, recomputed %zu, %.0f MB\n",
           k * (in.store_s - last_in.store_s), k * (in.regularize_s - last_in.regularize_s),
           k * (mc.descriptor_search_s - last_mc.descriptor_search_s),
           k * (mc.proximity_s - last_mc.proximity_s),
@@ -267,7 +279,9 @@ int main(int argc, char** argv) {
           cs.misses - last_cache.misses + cs.hits - last_cache.hits,
           k * (cs.load_s - last_cache.load_s), ms.candidates - last_ms.candidates,
           ms.verified - last_ms.verified, ms.diverged, core.tiles().index().size(),
-          core.map_pending());
+          core.map_pending(), ts.segments, ts.segment_placements - last_ts.segment_placements,
+          ts.segment_recomputes - last_ts.segment_recomputes, ts.segment_bytes / 1048576.0);
+      last_ts = ts;
       last_ms = ms;
       last_in = in;
       last_mc = mc;
@@ -290,6 +304,7 @@ int main(int argc, char** argv) {
     background_cpu_s = ws.full_pass_cpu_s;
     tiles = core.tiles().index().size();
     map_pending = core.map_pending();
+    tile_stats = core.tiles().stats();
     loops = core.mapper().loops().size();
     live_poses = core.mapper().poses();
     diverged = core.mapper().stats().diverged;
@@ -406,6 +421,11 @@ int main(int argc, char** argv) {
     << ",\n  \"keyframes_in_map_frame\": " << in_map
     << ",\n  \"vehicles_in_map_frame\": " << merged.size() << ",\n  \"tiles\": " << tiles
     << ",\n  \"keyframes_not_fused_at_stop\": " << map_pending
+    << ",\n  \"tile_segment_keyframes\": " << o.tile_segment_keyframes
+    << ",\n  \"tile_segments\": " << tile_stats.segments
+    << ",\n  \"tile_segment_placements\": " << tile_stats.segment_placements
+    << ",\n  \"tile_segment_recomputes\": " << tile_stats.segment_recomputes
+    << ",\n  \"tile_keyframe_fusions\": " << tile_stats.added + tile_stats.subtracted
     << ",\n  \"published\": {\"pose_messages\": " << sink.pose_messages
     << ", \"pose_entries\": " << sink.pose_entries << ", \"summaries\": " << sink.summaries
     << ", \"tiles\": " << sink.tiles << "}"

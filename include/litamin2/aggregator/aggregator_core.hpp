@@ -155,6 +155,8 @@ class AggregatorCore {
   mapping::TileMap tiles_;
   std::vector<std::uint32_t> moved_;
   std::size_t recovered_ = 0;
+  /// Mapper::pending_merges_version() as last stored.
+  std::uint64_t saved_pending_merges_ = 0;
   std::size_t duplicates_ = 0;
   IngestCpu cpu_;
 };

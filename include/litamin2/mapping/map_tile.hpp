@@ -82,7 +82,7 @@ class MapTile {
   /// points than it has is a caller's error: returns false and changes nothing.
   bool apply(std::uint64_t voxel_key, const VoxelMoments& moments, int sign);
   /// Counts a keyframe fused into (+1) or removed from (-1) the tile.
-  void count_keyframe(int sign) { keyframes_ += sign; }
+  void count_keyframe(std::int64_t sign) { keyframes_ += sign; }
 
   /// The voxels with at least geometry.voxels.min_points points as distributions (regularised
   /// as the global map's), ordered by voxel key.

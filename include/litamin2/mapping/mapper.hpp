@@ -81,9 +81,11 @@ class Mapper {
 
   /// Restores a mapper's state without registrations: nodes with their descriptors and
   /// corrected poses (in any order; keys unique) and the loop edges between them (all
-  /// checked). The mapper must be empty. Throws std::invalid_argument for a loop whose
-  /// keyframes are missing.
-  void restore(std::vector<KeyframeNode> nodes, const std::vector<LoopEdge>& loops);
+  /// checked), and the loops that were waiting for a merge's confirmation (pending_merges();
+  /// those whose ends are now in one group are dropped). The mapper must be empty. Throws
+  /// std::invalid_argument for a loop whose keyframes are missing.
+  void restore(std::vector<KeyframeNode> nodes, const std::vector<LoopEdge>& loops,
+               const std::vector<LoopEdge>& pending_merges = {});
 
   bool contains(const KeyframeKey& key) const;
   const KeyframeNode* node(const KeyframeKey& key) const;
@@ -104,6 +106,11 @@ class Mapper {
   /// Empty without keyframes.
   std::string map_anchor() const;
   const std::vector<LoopEdge>& loops() const;
+  /// The verified loops between two groups waiting for their merge's confirmation
+  /// (merge_confirmation.hpp), oldest first: not in the graph, but what a restart must keep.
+  std::vector<LoopEdge> pending_merges() const;
+  /// Counts the changes of pending_merges() (to persist it only when it changed).
+  std::uint64_t pending_merges_version() const;
   MapperStats stats() const;
   MapperCpu cpu() const;
   const MapperConfig& config() const;

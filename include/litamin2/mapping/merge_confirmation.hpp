@@ -16,9 +16,9 @@
 /// the newer loop measures; the tolerance grows with the separation because the odometry
 /// between the two places drifts.
 ///
-/// Pending loops are held in memory only (a restart forgets them: they were never part of the
-/// graph), at most kMaxPending of them, the oldest dropped first; those whose two ends have
-/// come to one group by other merges are dropped.
+/// Pending loops are not part of the graph; the aggregator persists them (pending(), version())
+/// and a restart restores them. At most kMaxPending of them are kept, the oldest dropped
+/// first; those whose two ends have come to one group by other merges are dropped.
 
 #include "litamin2/mapping/keyframe_graph.hpp"
 #include "litamin2/mapping/loop_edge.hpp"
@@ -65,12 +65,20 @@ class MergeConfirmation {
   std::vector<MergeCandidate> offer(const MergeCandidate& candidate, const KeyframeGraph& graph);
 
   std::size_t pending() const { return pending_.size(); }
+  /// The pending loops, oldest first.
+  const std::deque<MergeCandidate>& pending_loops() const { return pending_; }
+  /// Counts the changes of the pending loops.
+  std::uint64_t version() const { return version_; }
+  /// Replaces the pending loops (a restart), oldest first; those whose ends are in one group
+  /// are dropped and the oldest beyond kMaxPending too.
+  void restore(const std::vector<MergeCandidate>& pending, const KeyframeGraph& graph);
 
  private:
   bool agrees(const MergeDisagreement& d) const;
 
   PlaceRecognitionConfig config_;
   std::deque<MergeCandidate> pending_;
+  std::uint64_t version_ = 0;
 };
 
 }  // namespace litamin2::mapping

@@ -8,6 +8,23 @@
 /// (smaller moves leave the map as it is: its voxels are metres wide), added when it arrives
 /// in the map, subtracted when it leaves it (the map frame moved to another group).
 ///
+/// With segment_keyframes > 0 the unit of fusion is a rigid segment, not a keyframe
+/// (segment_voxels.hpp): a stream's keyframes with ids [k n, (k + 1) n) are fused once in the
+/// segment's frame, the fused pose of its reference keyframe (the lowest id fused), each at
+/// its pose relative to it. A marked segment is reconciled whole: when its reference has moved
+/// by more than the threshold the segment is re-placed at the reference's current pose
+/// (subtracted at the old frame, added at the new: a few hundred segment voxels, no keyframe
+/// read back while its moments are in the segment cache); a keyframe whose pose, through its
+/// segment's frame, is more than the threshold from its own (the local optimisation bends the
+/// segment), or that arrives in or leaves the map, is subtracted from / added to the segment's
+/// moments at its relative pose. A keyframe of lower id than the reference (a late one)
+/// rebuilds the segment. Every keyframe in the map is then fused at frame * relative pose,
+/// within the thresholds of its pose after the frame's and its own threshold (the frame's
+/// rotation threshold acting at the keyframe's distance from the reference, <= ~20 m for
+/// segments of 10 keyframes 2 m apart). A segment's moments are kept in a cache bounded in
+/// bytes and recomputed from its keyframes' distributions at their relative poses when
+/// evicted.
+///
 /// Tiles are held in a cache bounded in bytes in front of a loader (the aggregator's store):
 /// tiles changed since take_changes() stay in memory (the caller persists them), the others
 /// are dropped least recently used first and read back when a keyframe touches them again.
@@ -19,6 +36,7 @@
 #include "litamin2/mapping/distribution_cache.hpp"
 #include "litamin2/mapping/keyframe_graph.hpp"
 #include "litamin2/mapping/map_tile.hpp"
+#include "litamin2/mapping/segment_voxels.hpp"
 
 #include <Eigen/Geometry>
 
@@ -31,6 +49,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <unordered_map>
 #include <vector>
 
 namespace litamin2::mapping {
@@ -45,6 +64,11 @@ struct TileMapConfig {
   double move_threshold_m = 0.3;
   /// ... or turned by this much, degrees (0.3: 0.2 m at the 40 m the patches reach).
   double move_threshold_deg = 0.3;
+  /// Keyframes per rigid segment (by keyframe id), the unit of fusion; 0: every keyframe is
+  /// fused on its own (the map then holds exactly the global map's voxels at the fused poses).
+  int segment_keyframes = 10;
+  /// The segments' moments kept in memory, MB (the others are recomputed when they move).
+  double segment_cache_mb = 256.0;
 };
 
 /// Throws ConfigError on the first invalid value.
@@ -63,6 +87,12 @@ struct TileMapStats {
   std::size_t loads = 0;
   /// Subtractions that did not match what the tile held (a corrupt store): skipped.
   std::size_t inconsistent = 0;
+  /// Segment mode: segments in the map, their placements added to / subtracted from the
+  /// tiles, moments recomputed after an eviction, and the bytes of the moments in memory.
+  std::size_t segments = 0;
+  std::size_t segment_placements = 0;
+  std::size_t segment_recomputes = 0;
+  std::size_t segment_bytes = 0;
 };
 
 class TileMap {
@@ -79,15 +109,18 @@ class TileMap {
   /// The keyframe of node `node` (KeyframeGraph numbering) may have moved or changed frame.
   void mark(std::uint32_t node);
   /// Keyframes marked and not reconciled yet.
-  std::size_t pending() const { return queue_.size(); }
+  std::size_t pending() const { return marked_; }
 
   /// The state a store holds, for the graph it was committed with: each node's fused pose (by
   /// node index; nullopt: not fused) and the tile index. Marks the nodes that are not in sync.
   void restore(const KeyframeGraph& graph, std::vector<std::optional<Eigen::Isometry3d>> fused,
                std::vector<TileSummary> index);
 
-  /// Reconciles marked keyframes, oldest mark first, until `max_keyframes` of them have been
-  /// fused or subtracted (0: all). Distributions come from `cache`. Returns how many were.
+  /// Reconciles marked keyframes, oldest mark first, until `max_keyframes` fusions have been
+  /// done (0: all): a keyframe fused into or subtracted from a tile or a segment (also to
+  /// recompute an evicted segment's moments), or a segment placed in or taken out of the
+  /// tiles, counts one. Distributions come from `cache`.
+  /// Returns the fusions done.
   std::size_t update(const KeyframeGraph& graph, DistributionCache& cache,
                      std::size_t max_keyframes);
 
@@ -112,9 +145,34 @@ class TileMap {
   TileMapStats stats() const;
 
  private:
+  using Pose34 = Eigen::Matrix<double, 3, 4>;
   struct Fused {
-    Eigen::Matrix<double, 3, 4> pose = Eigen::Matrix<double, 3, 4>::Zero();
+    Pose34 pose = Pose34::Zero();
+    /// Segment mode: the pose in the segment's frame (pose = frame * relative).
+    Pose34 relative = Pose34::Zero();
     bool fused = false;
+  };
+  struct SegmentKey {
+    std::uint32_t stream = 0;
+    std::uint64_t index = 0;
+    bool operator==(const SegmentKey& o) const { return stream == o.stream && index == o.index; }
+  };
+  struct SegmentHash {
+    std::size_t operator()(const SegmentKey& k) const {
+      return std::hash<std::uint64_t>()(k.index * 0x9E3779B97F4A7C15ull ^ k.stream);
+    }
+  };
+  struct Segment {
+    /// Every graph node of the segment, fused or not.
+    std::vector<std::uint32_t> nodes;
+    bool placed = false;
+    std::uint32_t reference = 0;
+    Pose34 frame = Pose34::Zero();
+    /// The moments (null: evicted, recomputed from the fused keyframes when needed).
+    std::shared_ptr<SegmentVoxels> voxels;
+    std::size_t bytes = 0;
+    std::list<SegmentKey>::iterator lru;
+    std::uint64_t generation = 0;
   };
   struct Entry {
     std::shared_ptr<MapTile> tile;
@@ -133,7 +191,24 @@ class TileMap {
   /// Entry of a tile in memory or loaded; null if there is none.
   Entry* find(TileKey key);
   bool moved(const Fused& f, const Eigen::Isometry3d& pose) const;
+  bool moved(const Pose34& from, const Pose34& to) const;
   void evict();
+
+  // Segment mode.
+  SegmentKey segment_key(const KeyframeNode& node) const;
+  /// Adds graph nodes not seen yet to their segments.
+  void register_nodes(const KeyframeGraph& graph);
+  /// Brings a segment in line with the graph; returns the fusions done.
+  std::size_t reconcile(Segment& segment, const SegmentKey& key, const KeyframeGraph& graph,
+                        DistributionCache& cache, std::int64_t anchor);
+  /// The segment's moments (recomputed from its fused keyframes when evicted).
+  SegmentVoxels& segment_voxels(Segment& segment, const SegmentKey& key, const KeyframeGraph& graph,
+                                DistributionCache& cache);
+  /// Adds (+1) or subtracts (-1) a placement of the segment's moments at `frame`.
+  void place(const SegmentVoxels& voxels, const Pose34& frame, int sign, std::int64_t keyframes);
+  void apply_moments(const std::vector<FusedMoment>& moments, int sign, std::int64_t keyframes);
+  void changed_node(std::uint32_t n);
+  void evict_segments(const SegmentKey* keep);
 
   TileMapConfig config_;
   TileGeometry geometry_;
@@ -144,6 +219,7 @@ class TileMap {
   std::vector<Fused> fused_;
   std::deque<std::uint32_t> queue_;
   std::vector<bool> queued_;
+  std::size_t marked_ = 0;
   std::int64_t fused_anchor_ = -1;
 
   std::map<TileKey, TileSummary> index_;
@@ -157,6 +233,16 @@ class TileMap {
   std::vector<bool> node_changed_;
   std::size_t bytes_ = 0;
   TileMapStats stats_;
+
+  std::unordered_map<SegmentKey, Segment, SegmentHash> segments_;
+  /// Segments whose moments are in memory, most recently used first.
+  std::list<SegmentKey> segment_lru_;
+  std::size_t segment_bytes_ = 0;
+  std::size_t segment_max_bytes_ = 0;
+  std::size_t registered_ = 0;
+  /// Keyframes fused again to recompute evicted segments' moments, since construction.
+  std::size_t recomputed_keyframes_ = 0;
+  std::uint64_t generation_ = 0;
 };
 
 }  // namespace litamin2::mapping

@@ -61,9 +61,10 @@ class KeyframeStore {
   /// SQLite application_id (file header offset 68) of a keyframe store: "LT2K".
   static constexpr std::int32_t kApplicationId = 0x4C54324B;
   /// Schema version (PRAGMA user_version) this build reads and writes.
-  static constexpr int kSchemaVersion = 2;
-  /// The oldest version it opens: a version-1 store opened for writing is upgraded in place
-  /// (nodes and tiles tables; migrate_schema), one opened read-only is read as it is.
+  static constexpr int kSchemaVersion = 3;
+  /// The oldest version it opens: an older store opened for writing is upgraded in place
+  /// (version 2: nodes and tiles tables; 3: pending_merges; migrate_schema), one opened
+  /// read-only is read as it is.
   static constexpr int kOldestSchemaVersion = 1;
 
   /// Opens or creates the store at `path`. Throws StoreError naming the path and the reason.
@@ -127,6 +128,8 @@ class KeyframeStore {
     };
     std::vector<Node> nodes;
     std::vector<mapping::LoopEdge> loops;
+    /// The loops between groups waiting for their merge's confirmation, oldest first.
+    std::vector<mapping::LoopEdge> pending_merges;
   };
   GraphRecords load_graph() const;
   /// Stores descriptors of nodes that have none (after a migration).
@@ -166,6 +169,12 @@ class KeyframeStore {
   /// The loop edges of the latest replace_loop_edges, in the order given to it.
   std::vector<mapping::LoopEdge> load_loop_edges() const;
 
+  /// Replaces the loops waiting for a merge's confirmation (Mapper::pending_merges), in the
+  /// order given (oldest first). The same edge twice is an error.
+  void replace_pending_merges(const std::vector<mapping::LoopEdge>& edges);
+  /// Those of the latest replace_pending_merges, in its order (none before schema version 3).
+  std::vector<mapping::LoopEdge> load_pending_merges() const;
+
   /// Replaces every stored corrected pose with `poses`, in one transaction. Two poses of the
   /// same keyframe are an error.
   void replace_corrected_poses(const std::vector<CorrectedPose>& poses);
@@ -176,7 +185,9 @@ class KeyframeStore {
   struct Impl;
   explicit KeyframeStore(std::unique_ptr<Impl> impl);
   Impl& impl() const;
-  void write_loop_edges(const std::vector<mapping::LoopEdge>& edges);
+  void write_loop_edges(const std::vector<mapping::LoopEdge>& edges,
+                        const char* table = "loop_edges");
+  std::vector<mapping::LoopEdge> read_loop_edges(const char* table) const;
   std::unique_ptr<Impl> impl_;
   friend class Batch;
 };
