@@ -2,8 +2,10 @@
 
 #include "litamin2/core/stopwatch.hpp"
 #include "litamin2/dds/checked_type.hpp"
+#include "litamin2/dds/stream_partition.hpp"
 #include "litamin2/msg/MapPatch.h"
 
+#include <spdlog/fmt/ranges.h>
 #include <spdlog/spdlog.h>
 #include <fastdds/dds/subscriber/DataReader.hpp>
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
@@ -41,6 +43,7 @@ void PatchListener::on_data_available(fdds::DataReader* reader) {
     t = taken_at;
     if (!info.valid_data) continue;
     ++received_;
+    if (!bound(msg.stream_id(), info.publication_handle)) continue;
     dds::PatchConversion patch = dds::from_map_patch(msg, options_);
     const double converted_at = thread_cpu_seconds();
     convert_cpu_ns_ += ns(converted_at - t);
@@ -51,6 +54,24 @@ void PatchListener::on_data_available(fdds::DataReader* reader) {
     }
     if (!queue_.push(std::move(patch.keyframe))) return;  // shutting down
   }
+}
+
+bool PatchListener::bound(const std::string& stream_id,
+                          const eprosima::fastrtps::rtps::InstanceHandle_t& writer) {
+  if (!writers_partitions_) return true;
+  const std::optional<std::vector<std::string>> partitions = writers_partitions_->find(writer);
+  if (!partitions) {
+    reject(dds::kStreamNotBound, 1,
+           fmt::format("stream {}: its writer is unknown to discovery", stream_id));
+    return false;
+  }
+  if (!dds::stream_bound(stream_id, *partitions)) {
+    reject(dds::kStreamNotBound, 1,
+           fmt::format("stream {} written by a writer in partition(s) [{}]", stream_id,
+                       fmt::join(*partitions, ", ")));
+    return false;
+  }
+  return true;
 }
 
 void PatchListener::reject(const char* reason, std::uint64_t count, const std::string& message) {

@@ -1,11 +1,12 @@
 #pragma once
 /// The daemon's DDS side: one participant; per stream a reader of rt/<stream>/points (created
 /// when discovery reports a writer, reliable if the writer is), a tracker on the shared
-/// StreamScheduler, and a writer of rt/<stream>/odom; one writer each for map patches,
-/// status, rt/tf (every stream's odom -> base per pose) and rt/tf_static (every stream's
-/// base -> sensor, transient-local). Streams come from the config and, with discovery enabled, from
-/// every PointCloud2 topic matching the pattern. The main loop calls poll(); shutdown() stops
-/// input, drains the queues within the configured time and publishes a final status.
+/// StreamScheduler, a writer of rt/<stream>/odom and a writer of the map patches in the
+/// partition of the stream id (dds/stream_partition.hpp); one writer each for status, rt/tf (every
+/// stream's odom -> base per pose) and rt/tf_static (every stream's base -> sensor,
+/// transient-local). Streams come from the config and, with discovery enabled, from every
+/// PointCloud2 topic matching the pattern. The main loop calls poll(); shutdown() stops input,
+/// drains the queues within the configured time and publishes a final status.
 
 #include "litamin2/daemon/daemon_config.hpp"
 #include "litamin2/daemon/dds/publisher_discovery.hpp"
@@ -81,7 +82,8 @@ class DaemonNode {
   eprosima::fastdds::dds::TypeSupport status_type_;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
-  eprosima::fastdds::dds::DataWriter* map_patch_writer_ = nullptr;
+  /// Map patches: each stream has its publisher (partition = stream id) and writer.
+  eprosima::fastdds::dds::Topic* patches_topic_ = nullptr;
   eprosima::fastdds::dds::DataWriter* status_writer_ = nullptr;
   /// rt/tf and rt/tf_static (outputs.publish_tf; null without).
   eprosima::fastdds::dds::TypeSupport tf_type_;
