@@ -122,8 +122,11 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
   if (!participant_) throw std::runtime_error("cannot create the DDS participant: " + error);
   // Received patches and odometry are deserialised by CheckedTypes: malformed CDR is counted,
   // not fatal, and a patch's payload is bounded by limits.max_distributions_per_patch.
-  checked_patch_type_ = new dds::CheckedType<litamin2::msg::MapPatchPubSubType>(
-      patch_payload_limit(config_.limits.max_distributions_per_patch));
+  const std::uint32_t patch_limit = patch_payload_limit(config_.limits.max_distributions_per_patch);
+  checked_patch_type_ = new dds::CheckedType<litamin2::msg::MapPatchPubSubType>(patch_limit);
+  // limits.fixed_patch_payloads: the reader's history buffers are of this size, and Fast DDS
+  // drops a larger sample before reassembling it (dds::map_patches_reader_qos).
+  if (config_.limits.fixed_patch_payloads) checked_patch_type_->m_typeSize = patch_limit;
   patch_type_ = dds::register_type(participant_.get(), checked_patch_type_);
   poses_type_ =
       dds::register_type(participant_.get(), new litamin2::msg::KeyframePosesPubSubType());
@@ -175,10 +178,10 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
   worker_->start();
   subscribe_odometry(worker_->status());
 
-  reader_ = patch_subscriber_->create_datareader(patches, dds::map_patches_reader_qos(), &listener_,
-                                                 fdds::StatusMask::data_available()
-                                                     << fdds::StatusMask::subscription_matched()
-                                                     << fdds::StatusMask::sample_lost());
+  reader_ = patch_subscriber_->create_datareader(
+      patches, dds::map_patches_reader_qos(config_.limits.fixed_patch_payloads), &listener_,
+      fdds::StatusMask::data_available()
+          << fdds::StatusMask::subscription_matched() << fdds::StatusMask::sample_lost());
   if (!reader_) throw std::runtime_error("cannot create the map patch reader");
   next_status_ = Clock::now();
   spdlog::info("DDS participant up: domain {} ({}), profile {}, reading {}, publishing {} and {}",
