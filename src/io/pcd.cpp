@@ -14,6 +14,8 @@
 #include "litamin2/io/file_util.hpp"
 #include "litamin2/io/io_error.hpp"
 
+#include <liblzf/lzf.h>
+
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
 #error "litamin2::io reads and writes little-endian binary files and assumes a little-endian host"
 #endif
@@ -116,13 +118,9 @@ Header parse_header(const std::string& path, const std::string& bytes) {
     }
   }
 
-  if (header.data == "binary_compressed") {
-    throw IoError(path,
-                  "DATA binary_compressed is not supported (only ascii and binary); convert it, "
-                  "e.g. with pcl_convert_pcd_ascii_binary <in> <out> 1");
-  }
-  if (header.data != "ascii" && header.data != "binary") {
-    throw IoError(path, "unknown DATA type '" + header.data + "' (expected ascii or binary)");
+  if (header.data != "ascii" && header.data != "binary" && header.data != "binary_compressed") {
+    throw IoError(path, "unknown DATA type '" + header.data +
+                            "' (expected ascii, binary or binary_compressed)");
   }
   if (!have_fields || header.fields.empty()) throw IoError(path, "header has no FIELDS line");
   if (!have_width) throw IoError(path, "header has no WIDTH line");
@@ -295,6 +293,49 @@ std::vector<float> relative_times(const std::string& path, const Field& field,
   return times;
 }
 
+/// The uncompressed point data of a DATA binary_compressed file (PCL's layout): after the DATA
+/// line, the compressed and the uncompressed size (uint32 little-endian each), then that many
+/// bytes of LZF data (liblzf, as PCL writes it). The uncompressed size must be POINTS times the
+/// record size; sizes that no LZF stream can produce (more than 88 output bytes per input byte,
+/// its longest back-reference: 264 bytes in 3) are rejected before any allocation, so a small
+/// file cannot claim gigabytes. Throws IoError for a truncated or corrupt stream.
+std::string decompress_lzf(const std::string& path, const Header& header,
+                           const std::string& bytes) {
+  const std::size_t available = bytes.size() - header.data_offset;
+  if (available < 8) throw IoError(path, "binary_compressed: truncated before the two size words");
+  std::uint32_t compressed_size = 0, uncompressed_size = 0;
+  std::memcpy(&compressed_size, bytes.data() + header.data_offset, 4);
+  std::memcpy(&uncompressed_size, bytes.data() + header.data_offset + 4, 4);
+  const std::size_t n = *header.points;
+  if (n > std::numeric_limits<std::uint32_t>::max() / header.record_size ||
+      uncompressed_size != n * header.record_size) {
+    throw IoError(path, "binary_compressed: the uncompressed size " +
+                            std::to_string(uncompressed_size) + " is not POINTS " +
+                            std::to_string(n) + " x " + std::to_string(header.record_size) +
+                            " bytes");
+  }
+  if (compressed_size > available - 8) {
+    throw IoError(path, "binary_compressed: " + std::to_string(compressed_size) +
+                            " compressed bytes announced, only " + std::to_string(available - 8) +
+                            " present (truncated)");
+  }
+  constexpr std::size_t kLzfMaxExpansion = 88;
+  if (uncompressed_size > std::size_t{compressed_size} * kLzfMaxExpansion) {
+    throw IoError(path, "binary_compressed: " + std::to_string(compressed_size) +
+                            " compressed bytes cannot hold " + std::to_string(uncompressed_size) +
+                            " bytes of LZF data (corrupt sizes)");
+  }
+  std::string out(uncompressed_size, '\0');
+  if (uncompressed_size == 0) return out;
+  const unsigned int got = lzf_decompress(bytes.data() + header.data_offset + 8, compressed_size,
+                                          out.data(), uncompressed_size);
+  if (got != uncompressed_size) {
+    throw IoError(path, "binary_compressed: the LZF data is corrupt (" + std::to_string(got) +
+                            " of " + std::to_string(uncompressed_size) + " bytes decoded)");
+  }
+  return out;
+}
+
 }  // namespace
 
 PointCloud read_pcd(const std::string& path) {
@@ -320,23 +361,34 @@ PointCloud read_pcd(const std::string& path) {
     return cloud;
   };
 
-  if (header.data == "binary") {
-    const std::size_t available = bytes.size() - header.data_offset;
-    if (n > available / header.record_size) {
-      throw IoError(path, "truncated binary data: " + std::to_string(n) + " points of " +
-                              std::to_string(header.record_size) + " bytes need " +
-                              std::to_string(n * header.record_size) + " bytes, only " +
-                              std::to_string(available) + " present");
+  if (header.data != "ascii") {
+    // Binary records are interleaved (AoS): point i's field f at i * record_size + f.offset.
+    // binary_compressed holds the same bytes field by field (SoA), so field f's block starts
+    // at n * f.offset and point i's value at block + i * f.size * f.count.
+    const bool compressed = header.data == "binary_compressed";
+    const std::string payload = compressed ? decompress_lzf(path, header, bytes) : std::string();
+    const char* base = compressed ? payload.data() : bytes.data() + header.data_offset;
+    if (!compressed) {
+      const std::size_t available = bytes.size() - header.data_offset;
+      if (n > available / header.record_size) {
+        throw IoError(path, "truncated binary data: " + std::to_string(n) + " points of " +
+                                std::to_string(header.record_size) + " bytes need " +
+                                std::to_string(n * header.record_size) + " bytes, only " +
+                                std::to_string(available) + " present");
+      }
     }
+    const auto at = [&](const Field& f, std::size_t i) {
+      return compressed ? base + n * f.offset + i * f.size * f.count
+                        : base + i * header.record_size + f.offset;
+    };
     cloud.points.reserve(n);
     if (fi) cloud.intensities.reserve(n);
     if (ft) raw_times.reserve(n);
     for (std::size_t i = 0; i < n; ++i) {
-      const char* rec = bytes.data() + header.data_offset + i * header.record_size;
-      const Eigen::Vector3d p(decode(*fx, rec + fx->offset), decode(*fy, rec + fy->offset),
-                              decode(*fz, rec + fz->offset));
-      append_point(path, i, cloud, p, fi, fi ? decode(*fi, rec + fi->offset) : 0.0, ft,
-                   ft ? decode(*ft, rec + ft->offset) : 0.0, raw_times);
+      const Eigen::Vector3d p(decode(*fx, at(*fx, i)), decode(*fy, at(*fy, i)),
+                              decode(*fz, at(*fz, i)));
+      append_point(path, i, cloud, p, fi, fi ? decode(*fi, at(*fi, i)) : 0.0, ft,
+                   ft ? decode(*ft, at(*ft, i)) : 0.0, raw_times);
     }
     return finish();
   }

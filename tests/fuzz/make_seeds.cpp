@@ -23,6 +23,8 @@
 #include <string>
 #include <vector>
 
+#include <liblzf/lzf.h>
+
 namespace fs = std::filesystem;
 using namespace litamin2;
 namespace rtps = eprosima::fastrtps::rtps;
@@ -255,6 +257,18 @@ void file_seeds() {
       "COUNT 1 1 1 1\nWIDTH 3\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 3\n";
   write(pcd, "ascii", header + "DATA ascii\n1 2 3 4\n5 6 7 8\nnan nan nan nan\n");
   write(pcd, "binary", header + "DATA binary\n" + floats({1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12}));
+  {
+    // binary_compressed: the same three points field by field, LZF-compressed (as PCL writes).
+    const std::string soa = floats({1, 5, 9, 2, 6, 10, 3, 7, 11, 4, 8, 12});
+    std::string packed(soa.size() + 64, '\0');
+    const unsigned int size = lzf_compress(soa.data(), static_cast<unsigned int>(soa.size()),
+                                           packed.data(), static_cast<unsigned int>(packed.size()));
+    const std::uint32_t sizes[2] = {size, static_cast<std::uint32_t>(soa.size())};
+    write(pcd, "binary_compressed",
+          header + "DATA binary_compressed\n" +
+              std::string(reinterpret_cast<const char*>(sizes), sizeof sizes) +
+              packed.substr(0, size));
+  }
   write(pcd, "regression-nan-intensity", header + "DATA ascii\n1 2 3 4\n5 6 7 nan\n8 8 8 8\n");
   write(pcd, "regression-coordinate-beyond-float",
         header + "DATA ascii\n1 2 3 4\n5e300 6 7 8\n8 8 8 8\n");

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -12,6 +13,8 @@
 #include "litamin2/io/io_error.hpp"
 #include "litamin2/io/pcd.hpp"
 #include "support/io_test_support.hpp"
+
+#include <liblzf/lzf.h>
 
 namespace fs = std::filesystem;
 using litamin2::PointCloud;
@@ -37,6 +40,20 @@ PointCloud sample(bool with_intensity) {
     if (with_intensity) cloud.intensities.push_back(0.01f * i);
   }
   return cloud;
+}
+
+/// A DATA binary_compressed file as PCL writes it: the header, the compressed and uncompressed
+/// sizes, then `soa` (the points' bytes field by field) compressed with LZF.
+std::string compressed_pcd(const std::string& header, const std::string& soa) {
+  std::string packed(soa.size() + 64, '\0');
+  const unsigned int size = lzf_compress(soa.data(), static_cast<unsigned int>(soa.size()),
+                                         packed.data(), static_cast<unsigned int>(packed.size()));
+  if (size == 0) throw std::runtime_error("lzf_compress failed");
+  std::string out = header;
+  put<std::uint32_t>(out, size);
+  put<std::uint32_t>(out, static_cast<std::uint32_t>(soa.size()));
+  out.append(packed.data(), size);
+  return out;
 }
 
 const std::string kHeader3 =
@@ -118,8 +135,8 @@ TEST(IoPcd, ErrorsNameTheFile) {
     write_text(dir / name, content);
     expect_io_error([&] { read_pcd((dir / name).string()); }, name, also);
   };
-  check("compressed.pcd", kHeader3 + "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA binary_compressed\n",
-        "binary_compressed is not supported");
+  check("unknown_data.pcd", kHeader3 + "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA binary_zstd\n",
+        "unknown DATA type");
   check("mismatch.pcd", kHeader3 + "WIDTH 3\nHEIGHT 2\nPOINTS 5\nDATA ascii\n", "POINTS");
   std::string truncated = kHeader3 + "WIDTH 3\nHEIGHT 1\nPOINTS 3\nDATA binary\n";
   for (int i = 0; i < 8; ++i) put<float>(truncated, 1.0f);  // 8 of 9 floats
@@ -191,4 +208,87 @@ TEST(IoPcd, BinaryWithExtraFieldsRoundTripsAndIsValidated) {
   EXPECT_THROW(write_pcd_binary(path, cloud, {{"my t", 'F', 4, t}}), std::invalid_argument);
   EXPECT_THROW(write_pcd_binary(path, cloud, {{"t", 'F', 4, t}, {"t", 'U', 2, ring}}),
                std::invalid_argument);
+}
+
+TEST(IoPcd, BinaryCompressedIsReadFieldByField) {
+  // x y z intensity as float32 and t as uint32 nanoseconds, 50 points, one of them a NaN point;
+  // the data are laid out field by field, as PCL writes binary_compressed.
+  constexpr int kPoints = 50;
+  std::string soa;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int i = 0; i < kPoints; ++i) {
+      const float v = i == 7 ? std::nanf("") : 0.25f * i + 100.0f * axis;
+      put<float>(soa, v);
+    }
+  }
+  for (int i = 0; i < kPoints; ++i) put<float>(soa, 2.0f * i);
+  for (int i = 0; i < kPoints; ++i) put<std::uint32_t>(soa, 1000u * i);
+  const std::string header =
+      "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z intensity t\nSIZE 4 4 4 4 4\nTYPE F F F F U\n"
+      "COUNT 1 1 1 1 1\nWIDTH 50\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 50\n"
+      "DATA binary_compressed\n";
+  const fs::path file = temp_dir() / "compressed.pcd";
+  write_text(file, compressed_pcd(header, soa));
+  const PointCloud cloud = read_pcd(file.string());
+  ASSERT_EQ(cloud.size(), static_cast<std::size_t>(kPoints - 1));  // the NaN point is dropped
+  ASSERT_EQ(cloud.intensities.size(), cloud.size());
+  ASSERT_EQ(cloud.times.size(), cloud.size());
+  for (std::size_t k = 0; k < cloud.size(); ++k) {
+    const int i = static_cast<int>(k < 7 ? k : k + 1);
+    EXPECT_EQ(cloud.points[k], Eigen::Vector3f(0.25f * i, 0.25f * i + 100.0f, 0.25f * i + 200.0f));
+    EXPECT_EQ(cloud.intensities[k], 2.0f * i);
+    EXPECT_FLOAT_EQ(cloud.times[k], 1e-6f * i);
+  }
+}
+
+TEST(IoPcd, BinaryCompressedEqualsBinary) {
+  const fs::path dir = temp_dir();
+  const PointCloud cloud = sample(true);
+  write_pcd_binary((dir / "plain.pcd").string(), cloud);
+  std::string soa;
+  for (int axis = 0; axis < 3; ++axis)
+    for (const auto& p : cloud.points) put<float>(soa, p[axis]);
+  for (float v : cloud.intensities) put<float>(soa, v);
+  const std::string header =
+      "VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\n"
+      "WIDTH 20\nHEIGHT 1\nPOINTS 20\nDATA binary_compressed\n";
+  write_text(dir / "packed.pcd", compressed_pcd(header, soa));
+  const PointCloud plain = read_pcd((dir / "plain.pcd").string());
+  const PointCloud packed = read_pcd((dir / "packed.pcd").string());
+  EXPECT_EQ(plain.points, packed.points);
+  EXPECT_EQ(plain.intensities, packed.intensities);
+}
+
+TEST(IoPcd, BinaryCompressedErrors) {
+  const fs::path dir = temp_dir();
+  const std::string header = kHeader3 + "WIDTH 4\nHEIGHT 1\nPOINTS 4\nDATA binary_compressed\n";
+  std::string soa;
+  for (int k = 0; k < 12; ++k) put<float>(soa, 1.5f * k);
+  const std::string good = compressed_pcd(header, soa);
+  write_text(dir / "good.pcd", good);
+  EXPECT_EQ(read_pcd((dir / "good.pcd").string()).size(), 4u);
+  auto check = [&](const std::string& name, const std::string& content, const std::string& also) {
+    write_text(dir / name, content);
+    expect_io_error([&] { read_pcd((dir / name).string()); }, name, also);
+  };
+  check("no_sizes.pcd", header + "abc", "truncated before the two size words");
+  check("truncated.pcd", good.substr(0, good.size() - 3), "truncated");
+  // The uncompressed size must be POINTS x the record size (here 4 x 12).
+  std::string wrong_size = good;
+  const std::uint32_t forty = 40;
+  std::memcpy(wrong_size.data() + header.size() + 4, &forty, 4);
+  check("wrong_size.pcd", wrong_size, "is not POINTS 4 x 12");
+  // A tiny file claiming a huge cloud is refused before anything is allocated.
+  std::string huge =
+      kHeader3 + "WIDTH 300000000\nHEIGHT 1\nPOINTS 300000000\nDATA binary_compressed\n";
+  put<std::uint32_t>(huge, 4);
+  put<std::uint32_t>(huge, 3600000000u);
+  huge += "abcd";
+  check("huge.pcd", huge, "cannot hold");
+  // Corrupt LZF data: a back-reference before the start of the output.
+  std::string corrupt = header;
+  put<std::uint32_t>(corrupt, 3);
+  put<std::uint32_t>(corrupt, 48);
+  corrupt += std::string("\xe0\xff\xff", 3);
+  check("corrupt.pcd", corrupt, "LZF data is corrupt");
 }

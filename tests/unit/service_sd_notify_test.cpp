@@ -1,5 +1,6 @@
 // sd_notify protocol against a fake NOTIFY_SOCKET (a unix datagram socket bound by the test),
-// path and abstract names, WATCHDOG_USEC parsing and the watchdog pinger's cadence.
+// path and abstract names, through libsystemd; WATCHDOG_USEC/WATCHDOG_PID and the watchdog
+// pinger's cadence.
 
 #include "litamin2/service/sd_notify.hpp"
 
@@ -63,12 +64,21 @@ std::string unique_name(const char* tag) {
 
 }  // namespace
 
+/// Sets $NOTIFY_SOCKET for the scope (libsystemd reads it on every send).
+class NotifySocketEnv {
+ public:
+  explicit NotifySocketEnv(const std::string& name) { ::setenv("NOTIFY_SOCKET", name.c_str(), 1); }
+  ~NotifySocketEnv() { ::unsetenv("NOTIFY_SOCKET"); }
+};
+
 TEST(SdNotify, SendsToPathSocket) {
   const std::string path = ::testing::TempDir() + "/" + unique_name("notify");
   FakeSystemd systemd(path);
   ASSERT_TRUE(systemd.bound());
-  SdNotifier notifier(path);
+  NotifySocketEnv env(path);
+  SdNotifier notifier = SdNotifier::from_environment();
   ASSERT_TRUE(notifier.enabled());
+  EXPECT_EQ(notifier.socket(), path);
   EXPECT_TRUE(notifier.ready());
   EXPECT_EQ(systemd.receive(), "READY=1");
   EXPECT_TRUE(notifier.status("2 streams\nok"));
@@ -79,15 +89,13 @@ TEST(SdNotify, SendsToPathSocket) {
   EXPECT_EQ(systemd.receive(), "STOPPING=1");
 }
 
-TEST(SdNotify, SendsToAbstractSocketFromEnvironment) {
+TEST(SdNotify, SendsToAbstractSocket) {
   const std::string name = "@" + unique_name("litamin2-notify-");
   FakeSystemd systemd(name);
   ASSERT_TRUE(systemd.bound());
-  ::setenv("NOTIFY_SOCKET", name.c_str(), 1);
+  NotifySocketEnv env(name);
   SdNotifier notifier = SdNotifier::from_environment();
-  ::unsetenv("NOTIFY_SOCKET");
   ASSERT_TRUE(notifier.enabled());
-  EXPECT_EQ(notifier.path(), name);
   EXPECT_TRUE(notifier.ready());
   EXPECT_EQ(systemd.receive(), "READY=1");
 }
@@ -97,22 +105,19 @@ TEST(SdNotify, DisabledWithoutSocket) {
   SdNotifier notifier = SdNotifier::from_environment();
   EXPECT_FALSE(notifier.enabled());
   EXPECT_FALSE(notifier.ready());
-  EXPECT_FALSE(SdNotifier("relative/path").enabled());
-  // A socket nobody listens on: the send fails, without blocking or throwing.
-  SdNotifier nobody("@litamin2-nobody-listens-" + std::to_string(::getpid()));
+  EXPECT_FALSE(SdNotifier().ready());
+  // Not a socket address, and a socket nobody listens on: the sends fail, without throwing.
+  {
+    NotifySocketEnv env("relative/path");
+    EXPECT_FALSE(SdNotifier::from_environment().ready());
+  }
+  NotifySocketEnv env("@litamin2-nobody-listens-" + std::to_string(::getpid()));
+  SdNotifier nobody = SdNotifier::from_environment();
   EXPECT_TRUE(nobody.enabled());
   EXPECT_FALSE(nobody.ready());
 }
 
-TEST(SdNotify, ParsesWatchdogUsec) {
-  EXPECT_EQ(parse_watchdog_usec("3000000"), std::chrono::microseconds(3000000));
-  EXPECT_FALSE(parse_watchdog_usec(nullptr));
-  EXPECT_FALSE(parse_watchdog_usec(""));
-  EXPECT_FALSE(parse_watchdog_usec("0"));
-  EXPECT_FALSE(parse_watchdog_usec("-5"));
-  EXPECT_FALSE(parse_watchdog_usec("12abc"));
-  EXPECT_FALSE(parse_watchdog_usec("99999999999999999999999"));
-
+TEST(SdNotify, WatchdogIntervalFromEnvironment) {
   ::setenv("WATCHDOG_USEC", "500000", 1);
   ::unsetenv("WATCHDOG_PID");
   EXPECT_EQ(watchdog_interval_from_environment(), std::chrono::microseconds(500000));
@@ -121,6 +126,10 @@ TEST(SdNotify, ParsesWatchdogUsec) {
   ::setenv("WATCHDOG_PID", std::to_string(::getpid() + 1).c_str(), 1);
   EXPECT_FALSE(watchdog_interval_from_environment());  // meant for another process
   ::unsetenv("WATCHDOG_PID");
+  for (const char* invalid : {"", "0", "-5", "12abc", "99999999999999999999999"}) {
+    ::setenv("WATCHDOG_USEC", invalid, 1);
+    EXPECT_FALSE(watchdog_interval_from_environment()) << "WATCHDOG_USEC=" << invalid;
+  }
   ::unsetenv("WATCHDOG_USEC");
   EXPECT_FALSE(watchdog_interval_from_environment());
 }
@@ -129,7 +138,8 @@ TEST(WatchdogPinger, PingsAtHalfTheIntervalWhileHealthy) {
   const std::string name = "@" + unique_name("litamin2-wd-");
   FakeSystemd systemd(name);
   ASSERT_TRUE(systemd.bound());
-  SdNotifier notifier(name);
+  NotifySocketEnv env(name);
+  SdNotifier notifier = SdNotifier::from_environment();
   WatchdogPinger pinger(notifier, std::chrono::microseconds(1000000));  // WatchdogSec=1
   ASSERT_TRUE(pinger.enabled());
   EXPECT_EQ(pinger.period(), 500ms);
@@ -150,7 +160,8 @@ TEST(WatchdogPinger, PingsAtHalfTheIntervalWhileHealthy) {
 }
 
 TEST(WatchdogPinger, DisabledWithoutInterval) {
-  SdNotifier notifier("@litamin2-unused-" + std::to_string(::getpid()));
+  NotifySocketEnv env("@litamin2-unused-" + std::to_string(::getpid()));
+  SdNotifier notifier = SdNotifier::from_environment();
   WatchdogPinger pinger(notifier, std::chrono::microseconds(0));
   EXPECT_FALSE(pinger.enabled());
   EXPECT_FALSE(pinger.tick(true));

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include <nlohmann/json.hpp>
+
 namespace litamin2::eval_tool {
 namespace {
 
@@ -13,43 +15,9 @@ std::string fixed(double value, int decimals) {
   return buf;
 }
 
-std::string json_number(double value) {
-  if (!std::isfinite(value)) return "null";
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.10g", value);
-  return buf;
-}
-
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof(buf), "\\u%04x", static_cast<unsigned>(c));
-          out += buf;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
+/// A JSON number, or null where the figure is undefined (NaN/Inf are not JSON).
+nlohmann::ordered_json number(double value) {
+  return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json();
 }
 
 std::string undefined_note(const Report& r) {
@@ -102,44 +70,41 @@ void print_table(std::ostream& out, const Report& r) {
 }
 
 void print_json(std::ostream& out, const Report& r) {
-  out << "{\n"
-      << "  \"ground_truth\": " << json_string(r.gt_path) << ",\n"
-      << "  \"estimate\": " << json_string(r.est_path) << ",\n"
-      << "  \"format\": " << json_string(r.format) << ",\n"
-      << "  \"poses\": " << r.poses << ",\n"
-      << "  \"gt_length_m\": " << json_number(r.gt_length_m) << ",\n"
-      << "  \"kitti\": {\n"
-      << "    \"valid\": " << (r.kitti.valid() ? "true" : "false") << ",\n";
-  if (!r.kitti.valid()) out << "    \"note\": " << json_string(undefined_note(r)) << ",\n";
-  out << "    \"segments\": " << r.kitti.segments << ",\n"
-      << "    \"translation_percent\": " << json_number(r.kitti.translation_percent) << ",\n"
-      << "    \"rotation_deg_per_100m\": " << json_number(r.kitti.rotation_deg_per_100m) << ",\n"
-      << "    \"per_length\": [";
-  for (std::size_t i = 0; i < r.kitti.per_length.size(); ++i) {
-    const auto& l = r.kitti.per_length[i];
-    out << (i ? ",\n" : "\n") << "      {\"length_m\": " << json_number(l.length)
-        << ", \"segments\": " << l.segments
-        << ", \"translation_percent\": " << json_number(l.translation_percent)
-        << ", \"rotation_deg_per_100m\": " << json_number(l.rotation_deg_per_100m) << "}";
+  using Json = nlohmann::ordered_json;
+  Json kitti = {{"valid", r.kitti.valid()}};
+  if (!r.kitti.valid()) kitti["note"] = undefined_note(r);
+  kitti["segments"] = r.kitti.segments;
+  kitti["translation_percent"] = number(r.kitti.translation_percent);
+  kitti["rotation_deg_per_100m"] = number(r.kitti.rotation_deg_per_100m);
+  kitti["per_length"] = Json::array();
+  for (const auto& l : r.kitti.per_length) {
+    kitti["per_length"].push_back({{"length_m", number(l.length)},
+                                   {"segments", l.segments},
+                                   {"translation_percent", number(l.translation_percent)},
+                                   {"rotation_deg_per_100m", number(l.rotation_deg_per_100m)}});
   }
-  out << "\n    ]\n  },\n"
-      << "  \"ate\": {\n"
-      << "    \"alignment\": " << json_string(r.alignment) << ",\n"
-      << "    \"translation_rmse_m\": " << json_number(r.ate.translation_rmse) << ",\n"
-      << "    \"translation_mean_m\": " << json_number(r.ate.translation_mean) << ",\n"
-      << "    \"translation_median_m\": " << json_number(r.ate.translation_median) << ",\n"
-      << "    \"translation_max_m\": " << json_number(r.ate.translation_max) << ",\n"
-      << "    \"rotation_rmse_deg\": " << json_number(r.ate.rotation_rmse_deg) << ",\n"
-      << "    \"scale\": " << json_number(r.ate.scale) << "\n"
-      << "  },\n"
-      << "  \"rpe\": {\n"
-      << "    \"delta_frames\": " << r.rpe.delta << ",\n"
-      << "    \"pairs\": " << r.rpe.pairs << ",\n"
-      << "    \"translation_rmse_m\": " << json_number(r.rpe.translation_rmse) << ",\n"
-      << "    \"translation_mean_m\": " << json_number(r.rpe.translation_mean) << ",\n"
-      << "    \"rotation_rmse_deg\": " << json_number(r.rpe.rotation_rmse_deg) << "\n"
-      << "  }\n"
-      << "}\n";
+  const Json report = {{"ground_truth", r.gt_path},
+                       {"estimate", r.est_path},
+                       {"format", r.format},
+                       {"poses", r.poses},
+                       {"gt_length_m", number(r.gt_length_m)},
+                       {"kitti", kitti},
+                       {"ate",
+                        {{"alignment", r.alignment},
+                         {"translation_rmse_m", number(r.ate.translation_rmse)},
+                         {"translation_mean_m", number(r.ate.translation_mean)},
+                         {"translation_median_m", number(r.ate.translation_median)},
+                         {"translation_max_m", number(r.ate.translation_max)},
+                         {"rotation_rmse_deg", number(r.ate.rotation_rmse_deg)},
+                         {"scale", number(r.ate.scale)}}},
+                       {"rpe",
+                        {{"delta_frames", r.rpe.delta},
+                         {"pairs", r.rpe.pairs},
+                         {"translation_rmse_m", number(r.rpe.translation_rmse)},
+                         {"translation_mean_m", number(r.rpe.translation_mean)},
+                         {"rotation_rmse_deg", number(r.rpe.rotation_rmse_deg)}}}};
+  // Invalid UTF-8 in a file name is replaced, not thrown (the report is still written).
+  out << report.dump(2, ' ', false, Json::error_handler_t::replace) << '\n';
 }
 
 }  // namespace litamin2::eval_tool

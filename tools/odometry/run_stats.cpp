@@ -6,7 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <numeric>
-#include <sstream>
+
+#include <nlohmann/json.hpp>
 
 namespace litamin2::tools {
 
@@ -32,28 +33,6 @@ void RunStats::add_skipped(std::size_t index, const std::string& path, const std
   skipped_.push_back({index, path, error});
 }
 
-namespace {
-
-/// `text` as a JSON string.
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char code[8];
-      std::snprintf(code, sizeof(code), "\\u%04x", c);
-      out += code;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
-
-}  // namespace
-
 double RunStats::frames_per_second() const {
   const double total = std::accumulate(total_ms_.begin(), total_ms_.end(), 0.0);
   return total > 0.0 ? 1000.0 * static_cast<double>(total_ms_.size()) / total : 0.0;
@@ -75,52 +54,50 @@ double RunStats::max_ms() const {
 std::string RunStats::to_json(const std::string& mode, const std::string& sensor, double voxel_size,
                               int threads, double wall_seconds,
                               const std::optional<Accuracy>& accuracy) const {
+  using Json = nlohmann::ordered_json;
+  // A JSON number, or null for an undefined figure (NaN/Inf are not JSON).
+  const auto number = [](double v) { return std::isfinite(v) ? Json(v) : Json(); };
   const double n = std::max<double>(1.0, static_cast<double>(frames()));
-  std::ostringstream out;
-  out.precision(6);
-  out << "{\n"
-      << "  \"frames\": " << frames() << ",\n"
-      << "  \"mode\": \"" << mode << "\",\n"
-      << "  \"sensor\": \"" << sensor << "\",\n"
-      << "  \"voxel_size\": " << voxel_size << ",\n"
-      << "  \"threads\": " << threads << ",\n"
-      << "  \"frames_per_second\": " << frames_per_second() << ",\n"
-      << "  \"wall_seconds\": " << wall_seconds << ",\n"
-      << "  \"frame_ms\": {\"p50\": " << percentile_ms(50) << ", \"p99\": " << percentile_ms(99)
-      << ", \"max\": " << max_ms() << "},\n"
-      << "  \"stage_mean_ms\": {\"voxelize\": " << sum_.voxelize_ms / n
-      << ", \"register\": " << sum_.register_ms / n
-      << ", \"map_update\": " << sum_.map_update_ms / n << ", \"deskew\": " << sum_.deskew_ms / n
-      << "},\n"
-      << "  \"deskewed_frames\": " << deskewed_ << ",\n"
-      << "  \"mean_distributions_per_scan\": " << distributions_ / n << ",\n"
-      << "  \"mean_newton_iterations\": " << iterations_ / n << ",\n"
-      << "  \"mean_voxelizations\": " << voxelizations_ / n << ",\n"
-      << "  \"regrid_stops\": " << regrid_stops_ << ",\n"
-      << "  \"recovery_retries\": " << retries_ << ",\n"
-      << "  \"recovery_kept\": " << recoveries_ << ",\n"
-      << "  \"mean_self_hits_dropped\": " << self_hits_ / n << ",\n"
-      << "  \"keyframes\": " << keyframes_ << ",\n"
-      << "  \"registration_failures\": " << failures_ << ",\n"
-      << "  \"peak_memory_mib\": " << peak_memory_mib() << ",\n"
-      << "  \"skipped_frames\": [";
-  for (std::size_t k = 0; k < skipped_.size(); ++k) {
-    out << (k ? ", " : "") << "{\"frame\": " << skipped_[k].index
-        << ", \"file\": " << json_string(skipped_[k].path)
-        << ", \"error\": " << json_string(skipped_[k].error) << "}";
-  }
-  out << "]";
+  Json skipped = Json::array();
+  for (const Skipped& s : skipped_)
+    skipped.push_back({{"frame", s.index}, {"file", s.path}, {"error", s.error}});
+  Json stats = {{"frames", frames()},
+                {"mode", mode},
+                {"sensor", sensor},
+                {"voxel_size", voxel_size},
+                {"threads", threads},
+                {"frames_per_second", number(frames_per_second())},
+                {"wall_seconds", number(wall_seconds)},
+                {"frame_ms",
+                 {{"p50", number(percentile_ms(50))},
+                  {"p99", number(percentile_ms(99))},
+                  {"max", number(max_ms())}}},
+                {"stage_mean_ms",
+                 {{"voxelize", sum_.voxelize_ms / n},
+                  {"register", sum_.register_ms / n},
+                  {"map_update", sum_.map_update_ms / n},
+                  {"deskew", sum_.deskew_ms / n}}},
+                {"deskewed_frames", deskewed_},
+                {"mean_distributions_per_scan", distributions_ / n},
+                {"mean_newton_iterations", iterations_ / n},
+                {"mean_voxelizations", voxelizations_ / n},
+                {"regrid_stops", regrid_stops_},
+                {"recovery_retries", retries_},
+                {"recovery_kept", recoveries_},
+                {"mean_self_hits_dropped", self_hits_ / n},
+                {"keyframes", keyframes_},
+                {"registration_failures", failures_},
+                {"peak_memory_mib", peak_memory_mib()},
+                {"skipped_frames", skipped}};
   if (accuracy) {
-    auto number = [](double v) { return std::isfinite(v) ? std::to_string(v) : "null"; };
-    out << ",\n  \"accuracy\": {\"kitti_translation_percent\": "
-        << number(accuracy->translation_percent)
-        << ", \"kitti_rotation_deg_per_100m\": " << number(accuracy->rotation_deg_per_100m)
-        << ", \"kitti_segments\": " << accuracy->segments
-        << ", \"ate_translation_m\": " << number(accuracy->ate_translation_m)
-        << ", \"ate_rotation_deg\": " << number(accuracy->ate_rotation_deg) << "}";
+    stats["accuracy"] = {{"kitti_translation_percent", number(accuracy->translation_percent)},
+                         {"kitti_rotation_deg_per_100m", number(accuracy->rotation_deg_per_100m)},
+                         {"kitti_segments", accuracy->segments},
+                         {"ate_translation_m", number(accuracy->ate_translation_m)},
+                         {"ate_rotation_deg", number(accuracy->ate_rotation_deg)}};
   }
-  out << "\n}\n";
-  return out.str();
+  // Invalid UTF-8 in a skipped file's name is replaced, not thrown (the stats are still written).
+  return stats.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
 double peak_memory_mib() {

@@ -8,15 +8,15 @@
 
 namespace litamin2::io {
 
-/// Reads a .pcd file with DATA ascii or binary (binary_compressed is not supported and throws
-/// IoError saying so). Fields x, y, z are required (TYPE F, SIZE 4 or 8, COUNT 1); a field named
-/// "intensity" (COUNT 1, any numeric TYPE/SIZE, e.g. F4, F8, U1, U2) is read as intensity; every
-/// other field, including COUNT > 1 ones, is skipped. A per-point time field (the first of
-/// t, time, timestamp, offset_time present: Ouster, Velodyne, Hesai, Livox names; COUNT 1) is
-/// read into PointCloud::times as seconds relative to the sweep: integer TYPEs are nanoseconds,
-/// F seconds; values within +-1 s are relative already, larger ones absolute (F 8 or an
-/// integer SIZE 8) and made relative to the scan's earliest point. A non-finite time, absolute
-/// times in F 4 or a span over 1 s throw IoError. WIDTH*HEIGHT must equal POINTS (POINTS
+/// Reads a .pcd file with DATA ascii, binary or binary_compressed (PCL's LZF-compressed,
+/// field-by-field layout, decoded with liblzf). Fields x, y, z are required (TYPE F, SIZE 4 or 8,
+/// COUNT 1); a field named "intensity" (COUNT 1, any numeric TYPE/SIZE, e.g. F4, F8, U1, U2) is
+/// read as intensity; every other field, including COUNT > 1 ones, is skipped. A per-point time
+/// field (the first of t, time, timestamp, offset_time present: Ouster, Velodyne, Hesai, Livox
+/// names; COUNT 1) is read into PointCloud::times as seconds relative to the sweep: integer TYPEs
+/// are nanoseconds, F seconds; values within +-1 s are relative already, larger ones absolute (F 8
+/// or an integer SIZE 8) and made relative to the scan's earliest point. A non-finite time,
+/// absolute times in F 4 or a span over 1 s throw IoError. WIDTH*HEIGHT must equal POINTS (POINTS
 /// defaults to WIDTH*HEIGHT, HEIGHT to 1). Points with a non-finite coordinate (PCL's NaN points
 /// of organised clouds) are dropped together with their intensity and time. Throws IoError naming
 /// the file for a missing/unreadable file, a malformed header, inconsistent counts, truncated

@@ -1,7 +1,7 @@
 #pragma once
-/// A minimal systemd notification client (the sd_notify protocol: datagrams such as "READY=1"
-/// to the unix socket named by $NOTIFY_SOCKET, '@' for the abstract namespace) and the
-/// watchdog pinger that keeps a Type=notify service with WatchdogSec= alive.
+/// systemd notifications through libsystemd (sd_notify(3): datagrams such as "READY=1" to the
+/// socket named by $NOTIFY_SOCKET) and the watchdog pinger that keeps a Type=notify service with
+/// WatchdogSec= alive (sd_watchdog_enabled(3)).
 
 #include <chrono>
 #include <optional>
@@ -14,23 +14,17 @@ class SdNotifier {
  public:
   /// A notifier that sends nothing (not run by systemd).
   SdNotifier() = default;
-  /// A notifier for the socket `path` ("/run/systemd/notify", or "@name" for an abstract
-  /// socket); an empty path gives a disabled notifier.
-  explicit SdNotifier(std::string path);
-  /// The notifier for $NOTIFY_SOCKET (disabled if unset or empty).
+  /// The notifier for $NOTIFY_SOCKET (disabled if unset or empty). libsystemd reads the
+  /// variable again on every send, so it must stay set while the notifier is used.
   static SdNotifier from_environment();
-  ~SdNotifier();
-  SdNotifier(SdNotifier&& other) noexcept;
-  SdNotifier& operator=(SdNotifier&& other) noexcept;
-  SdNotifier(const SdNotifier&) = delete;
-  SdNotifier& operator=(const SdNotifier&) = delete;
 
   /// There is a socket to send to.
-  bool enabled() const { return !path_.empty(); }
-  const std::string& path() const { return path_; }
+  bool enabled() const { return !socket_.empty(); }
+  /// $NOTIFY_SOCKET as it was when the notifier was made.
+  const std::string& socket() const { return socket_; }
 
-  /// Sends one datagram ("KEY=VALUE" lines). Returns false if disabled or the send failed;
-  /// never blocks.
+  /// Sends one datagram ("KEY=VALUE" lines) with sd_notify(). Returns false if disabled or the
+  /// send failed (e.g. nobody listens).
   bool notify(std::string_view message) const;
   bool ready() const { return notify("READY=1"); }
   bool watchdog() const { return notify("WATCHDOG=1"); }
@@ -39,15 +33,14 @@ class SdNotifier {
   bool status(std::string_view text) const;
 
  private:
-  std::string path_;
-  int fd_ = -1;
+  explicit SdNotifier(std::string socket) : socket_(std::move(socket)) {}
+  std::string socket_;
 };
 
-/// The watchdog interval systemd expects pings within: $WATCHDOG_USEC, if set to a positive
-/// number and $WATCHDOG_PID is unset or this process's pid.
+/// The watchdog interval systemd expects pings within, from sd_watchdog_enabled(): set when
+/// $WATCHDOG_USEC is a positive number and $WATCHDOG_PID is unset or this process's pid;
+/// nothing otherwise (also for an invalid value).
 std::optional<std::chrono::microseconds> watchdog_interval_from_environment();
-/// Parses a WATCHDOG_USEC value (a positive decimal integer); nothing if invalid.
-std::optional<std::chrono::microseconds> parse_watchdog_usec(const char* text);
 
 /// Sends WATCHDOG=1 at half the watchdog interval, but only while the daemon reports itself
 /// healthy: tick() is called from the processing loop, so a loop that stops turning (or a
