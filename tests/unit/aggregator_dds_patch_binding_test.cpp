@@ -136,5 +136,58 @@ TEST(AggregatorPatchBinding, AWriterUnknownToDiscoveryBindsNoStream) {
   EXPECT_TRUE(out.queued.empty());
 }
 
+TEST(AggregatorPatchBinding, PatchesTakenTogetherAreQueuedInSourceTimestampOrder) {
+  // Fast DDS takes by instance (key hash: vehicle_01's sorts before vehicle_00's); with one
+  // writer per stream the listener restores the writers' order. Both samples are in the reader
+  // before the listener runs (it is called by hand), as when streams start together.
+  const std::string topic_name = "rt/litamin2/map_patches";
+  dds::WriterPartitions writers(topic_name);
+  PatchQueue queue(10);
+  PatchListener listener(queue, {}, &writers);
+  dds::ParticipantConfig config;
+  config.domain_id = litamin2::testing::test_domain();
+  std::string error;
+  dds::ParticipantPtr reader_participant = dds::create_participant(config, &error, &writers);
+  dds::ParticipantPtr writer_participant = dds::create_participant(config, &error);
+  ASSERT_TRUE(reader_participant && writer_participant) << error;
+  fdds::TypeSupport type(new litamin2::msg::MapPatchPubSubType());
+  type.register_type(reader_participant.get());
+  type.register_type(writer_participant.get());
+  auto* reader_topic =
+      reader_participant->create_topic(topic_name, type.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
+  auto* writer_topic =
+      writer_participant->create_topic(topic_name, type.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
+  auto* subscriber = reader_participant->create_subscriber(dds::every_stream_subscriber_qos());
+  auto* reader = subscriber->create_datareader(reader_topic, dds::map_patches_reader_qos());
+  ASSERT_TRUE(reader);
+  std::vector<fdds::DataWriter*> stream_writers;
+  for (const char* stream : {"vehicle_00", "vehicle_01"}) {
+    auto* publisher = writer_participant->create_publisher(dds::stream_publisher_qos(stream));
+    stream_writers.push_back(
+        publisher->create_datawriter(writer_topic, dds::map_patches_writer_qos(10)));
+    ASSERT_TRUE(stream_writers.back());
+  }
+  ASSERT_TRUE(wait_until(
+      [&] {
+        fdds::SubscriptionMatchedStatus s;
+        reader->get_subscription_matched_status(s);
+        return s.current_count == 2;
+      },
+      std::chrono::seconds(15)));
+  for (std::size_t i = 0; i < 2; ++i) {
+    litamin2::msg::MapPatch msg = patch(i == 0 ? "vehicle_00" : "vehicle_01", 0);
+    ASSERT_TRUE(stream_writers[i]->write(&msg));
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));  // distinct source timestamps
+  }
+  ASSERT_TRUE(
+      wait_until([&] { return reader->get_unread_count() == 2; }, std::chrono::seconds(15)));
+  listener.on_data_available(reader);
+  std::vector<Keyframe> queued;
+  queue.pop_batch(queued, 10, std::chrono::milliseconds(100));
+  ASSERT_EQ(queued.size(), 2u);
+  EXPECT_EQ(queued[0].key.stream, "vehicle_00");
+  EXPECT_EQ(queued[1].key.stream, "vehicle_01");
+}
+
 }  // namespace
 }  // namespace litamin2::aggregator

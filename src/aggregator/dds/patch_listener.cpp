@@ -5,6 +5,10 @@
 #include "litamin2/dds/stream_partition.hpp"
 #include "litamin2/msg/MapPatch.h"
 
+#include <algorithm>
+#include <utility>
+#include <vector>
+
 #include <spdlog/fmt/ranges.h>
 #include <spdlog/spdlog.h>
 #include <fastdds/dds/subscriber/DataReader.hpp>
@@ -25,6 +29,19 @@ std::uint64_t ns(double seconds) {
 void PatchListener::on_data_available(fdds::DataReader* reader) {
   litamin2::msg::MapPatch msg;
   fdds::SampleInfo info;
+  // Fast DDS takes the available samples instance by instance (by key hash), not in the order
+  // they were written; every stream has its own writer (dds/stream_partition.hpp), so patches of
+  // streams starting together come in an arbitrary order. They are queued in their writers'
+  // source-timestamp order, up to kOrderWindow at a time (the queue's back-pressure holds).
+  std::vector<std::pair<eprosima::fastrtps::rtps::Time_t, Keyframe>> taken_patches;
+  auto flush = [&] {
+    std::stable_sort(taken_patches.begin(), taken_patches.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (auto& [stamp, keyframe] : taken_patches)
+      if (!queue_.push(std::move(keyframe))) return false;  // shutting down
+    taken_patches.clear();
+    return true;
+  };
   double t = thread_cpu_seconds();
   // The reader's type is a dds::CheckedType: Fast DDS drops (inside take_next_sample) a sample
   // it could not deserialise; count those.
@@ -52,8 +69,10 @@ void PatchListener::on_data_available(fdds::DataReader* reader) {
       reject(dds::to_string(patch.error), 1, patch.message);
       continue;
     }
-    if (!queue_.push(std::move(patch.keyframe))) return;  // shutting down
+    taken_patches.emplace_back(info.source_timestamp, std::move(patch.keyframe));
+    if (taken_patches.size() >= kOrderWindow && !flush()) return;
   }
+  flush();
 }
 
 bool PatchListener::bound(const std::string& stream_id,

@@ -26,6 +26,10 @@ class PatchListener : public eprosima::fastdds::dds::DataReaderListener {
                          const dds::WriterPartitions* writers = nullptr)
       : queue_(queue), options_(options), writers_partitions_(writers) {}
 
+  /// Patches taken together are queued in their writers' source-timestamp order, this many at
+  /// most at a time.
+  static constexpr std::size_t kOrderWindow = 64;
+
   void on_data_available(eprosima::fastdds::dds::DataReader* reader) override;
   void on_subscription_matched(
       eprosima::fastdds::dds::DataReader* reader,
