@@ -13,7 +13,7 @@
 #    and without DDS-Security (a daemon identity cannot write another daemon's partition; a
 #    patch naming a stream outside its writer's partition is rejected and counted).
 #  - integration_patch_payload_bound: a 32 MB patch against a 1 MB payload limit: reassembled
-#    and rejected (peak RSS +32 MB) by default, dropped by Fast DDS before any allocation with
+#    and rejected (peak RSS + the sample's size) by default, dropped by Fast DDS before any allocation with
 #    limits.fixed_patch_payloads.
 if(TARGET litamin2d AND TARGET litamin2-aggregator)
   add_executable(raw_cdr_writer ${CMAKE_CURRENT_LIST_DIR}/raw_cdr_writer/main.cpp)
