@@ -165,6 +165,7 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node, const TrackerConf
   recovery.read("trigger_ratio", rec.trigger_ratio);
   read_scales(recovery, rec.motion_scales);
   recovery.read("share_smoothing", rec.share_smoothing);
+  recovery.read("reset_ratio", rec.reset_ratio);
   recovery.reject_unknown();
 
   YamlSection keyframe(root.child("keyframe"), "keyframe");
@@ -256,6 +257,7 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "trigger_ratio" << YAML::Value << c.recovery.trigger_ratio;
   out << YAML::Key << "motion_scales" << YAML::Value << YAML::Flow << c.recovery.motion_scales;
   out << YAML::Key << "share_smoothing" << YAML::Value << c.recovery.share_smoothing;
+  out << YAML::Key << "reset_ratio" << YAML::Value << c.recovery.reset_ratio;
   out << YAML::EndMap;
   out << YAML::Key << "keyframe" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "distance" << YAML::Value << c.keyframe.distance;

@@ -120,6 +120,29 @@ FrameResult Tracker::process(const PointCloud& raw) {
       voxelizer_.voxelize(scan, registration.grid_pose);
     }
     frame.inlier_share = share;
+    if (frame.retried && recovery.reset_ratio > 0.0 &&
+        share < recovery.reset_ratio * typical_share_) {
+      // No start fits: a break in the input. Restart the map from this scan at the prediction;
+      // the typical share and the velocity are not updated from it.
+      frame.map_reset = true;
+      search_.reset();
+      map_ = VoxelMap(config_.voxelizer, config_.map);
+      source_ = voxelizer_.voxelize(scan, predicted);
+      frame.times.voxelize_ms = registration.voxelize_ms;
+      frame.times.register_ms = registration.register_ms;
+      frame.voxelizations = registration.voxelizations + 1;
+      frame.source_distributions = static_cast<int>(source_.size());
+      frame.keyframe = true;
+      const auto start = std::chrono::steady_clock::now();
+      map_.add_keyframe(voxelizer_.last_voxels(), predicted);
+      search_ = make_correspondence_search(config_.registration.correspondence, map_);
+      last_keyframe_ = predicted;
+      frame.times.map_update_ms = elapsed_ms(start);
+      pose_ = predicted;
+      frame.pose = predicted;
+      ++frames_;
+      return frame;
+    }
     if (registration.result.valid) {
       typical_share_ = typical_share_ < 0.0 ? share
                                             : (1.0 - recovery.share_smoothing) * typical_share_ +

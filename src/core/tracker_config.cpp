@@ -95,6 +95,8 @@ void validate(const TrackerConfig& c) {
     require(std::isfinite(s) && s >= 0.0 && s <= 10.0, "recovery.motion_scales", s, "each 0 to 10");
   require(rec.share_smoothing > 0.0 && rec.share_smoothing <= 1.0, "recovery.share_smoothing",
           rec.share_smoothing, "in (0, 1]");
+  require(std::isfinite(rec.reset_ratio) && rec.reset_ratio >= 0.0 && rec.reset_ratio < 1.0,
+          "recovery.reset_ratio", rec.reset_ratio, "0 (off) up to, not including, 1");
   require(c.keyframe.distance >= 0.0, "keyframe.distance", c.keyframe.distance, "at least 0");
   require(c.keyframe.angle_deg >= 0.0, "keyframe.angle_deg", c.keyframe.angle_deg, "at least 0");
   validate(c.deskew);

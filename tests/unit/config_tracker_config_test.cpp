@@ -46,11 +46,13 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   config.map.radius = 80.0;
   config.registration.max_isotropy = 0.125;
   config.registration.line_gate = 0.0625;
+  config.recovery.reset_ratio = 0.375;
   const TrackerConfig back = tracker_config_from_yaml(YAML::Load(tracker_config_to_yaml(config)));
   EXPECT_EQ(tracker_config_to_yaml(back), tracker_config_to_yaml(config));
   EXPECT_EQ(back.voxelizer.voxel_size, 2.5);
   EXPECT_EQ(back.registration.correspondence, CorrespondenceMethod::kVoxel27);
   EXPECT_EQ(back.registration.line_gate, 0.0625);
+  EXPECT_EQ(back.recovery.reset_ratio, 0.375);
 }
 
 TEST(TrackerConfigYaml, ErrorsNameKeyAndValue) {
@@ -77,6 +79,10 @@ TEST(TrackerConfigYaml, ErrorsNameKeyAndValue) {
             std::string::npos);
   EXPECT_NE(error_of("registration: {line_gate: 1}").find("registration.line_gate: 1"),
             std::string::npos);
+  EXPECT_NE(error_of("recovery: {reset_ratio: -0.5}").find("recovery.reset_ratio: -0.5"),
+            std::string::npos);
+  EXPECT_NE(error_of("recovery: {reset_ratio: 1}").find("recovery.reset_ratio: 1"),
+            std::string::npos);
   EXPECT_NE(error_of("registration: {max_iterations: 0}").find("registration.max_iterations: 0"),
             std::string::npos);
 }
@@ -97,7 +103,8 @@ TEST(TrackerConfigYaml, InfinityAndNanAreRejectedForEveryNumber) {
                         "registration: {regrid_rotation_deg: %s}",
                         "registration: {max_correspondence_distance: %s}",
                         "keyframe: {distance: %s}",
-                        "keyframe: {angle_deg: %s}"};
+                        "keyframe: {angle_deg: %s}",
+                        "recovery: {reset_ratio: %s}"};
   for (const char* key : keys) {
     for (const char* value : {".inf", "+.inf", "-.inf", ".nan"}) {
       char yaml[128];

@@ -261,5 +261,62 @@ TEST(SparseTracking, WithoutRecoveryTheSameDropLosesTrack) {
   EXPECT_GT(worst_step_error(drive(dropped_frames()), config), 0.5);
 }
 
+/// A break in the input (docs/accuracy.md "Breaks in the real VLP-16 drive"): 1 m a frame,
+/// then 10 m between two files (frames missing: the prediction is 9 m short, beyond every
+/// recovery start), then 1 m a frame again.
+std::vector<double> broken_drive() {
+  std::vector<double> steps(10, 1.0);
+  steps[0] = 0.0;
+  steps.push_back(10.0);
+  for (int i = 0; i < 10; ++i) steps.push_back(1.0);
+  return steps;
+}
+
+/// Worst step error over the frames after the break (the break's own step is unknowable).
+double worst_after_break(const std::vector<FrameResult>& frames,
+                         const std::vector<Eigen::Isometry3d>& truth, std::size_t first) {
+  double worst = 0.0;
+  for (std::size_t i = first + 1; i < truth.size(); ++i) {
+    const Eigen::Isometry3d expected = truth[i - 1].inverse() * truth[i];
+    const Eigen::Isometry3d got = frames[i - 1].pose.inverse() * frames[i].pose;
+    worst = std::max(worst, (expected.inverse() * got).translation().norm());
+  }
+  return worst;
+}
+
+TrackerConfig reset_config(double ratio) {
+  TrackerConfig config;
+  config.recovery.reset_ratio = ratio;
+  return config;
+}
+
+TEST(SparseTracking, ABreakInTheInputRestartsTheMap) {
+  const auto truth = drive(broken_drive());
+  std::vector<FrameResult> frames;
+  worst_step_error(truth, reset_config(0.5), &frames);
+  std::vector<std::size_t> resets;
+  for (std::size_t i = 0; i < frames.size(); ++i)
+    if (frames[i].map_reset) resets.push_back(i);
+  ASSERT_EQ(resets, std::vector<std::size_t>{10}) << "only the frame after the break resets";
+  EXPECT_FALSE(frames[10].registered);
+  EXPECT_LT(worst_after_break(frames, truth, 10), 0.15);
+}
+
+TEST(SparseTracking, WithoutTheResetTheBreakSpoilsTheFramesAfterIt) {
+  // The failure the reset is for: the scan after the break, registered to a wrong pose, is
+  // merged into the map, and the next scans are matched to a map holding the street twice.
+  const auto truth = drive(broken_drive());
+  std::vector<FrameResult> frames;
+  worst_step_error(truth, reset_config(0.0), &frames);
+  for (const FrameResult& f : frames) EXPECT_FALSE(f.map_reset);
+  EXPECT_GT(worst_after_break(frames, truth, 10), 0.5);
+}
+
+TEST(SparseTracking, NoResetWhenFramesAreOnlyDropped) {
+  std::vector<FrameResult> frames;
+  EXPECT_LT(worst_step_error(drive(dropped_frames()), reset_config(0.5), &frames), 0.15);
+  for (const FrameResult& f : frames) EXPECT_FALSE(f.map_reset);
+}
+
 }  // namespace
 }  // namespace litamin2

@@ -26,6 +26,7 @@ void RunStats::add(const FrameResult& frame) {
   regrid_stops_ += frame.regrid_stopped ? 1 : 0;
   retries_ += frame.retried ? 1 : 0;
   recoveries_ += frame.recovered ? 1 : 0;
+  map_resets_ += frame.map_reset ? 1 : 0;
   self_hits_ += static_cast<std::size_t>(frame.self_hits);
 }
 
@@ -84,6 +85,7 @@ std::string RunStats::to_json(const std::string& mode, const std::string& sensor
                 {"regrid_stops", regrid_stops_},
                 {"recovery_retries", retries_},
                 {"recovery_kept", recoveries_},
+                {"map_resets", map_resets_},
                 {"mean_self_hits_dropped", self_hits_ / n},
                 {"keyframes", keyframes_},
                 {"registration_failures", failures_},

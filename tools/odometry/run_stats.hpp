@@ -48,6 +48,7 @@ class RunStats {
   std::size_t regrid_stops_ = 0;
   std::size_t retries_ = 0;
   std::size_t recoveries_ = 0;
+  std::size_t map_resets_ = 0;
   std::size_t self_hits_ = 0;
   std::size_t deskewed_ = 0;
   struct Skipped {

@@ -57,6 +57,9 @@ struct FrameResult {
   /// them fitted better than the prediction's.
   bool retried = false;
   bool recovered = false;
+  /// No start fitted (RecoveryConfig::reset_ratio): the map was restarted from this scan at
+  /// the constant-velocity prediction (the pose); `registered` is false.
+  bool map_reset = false;
   int source_distributions = 0;
   int correspondences = 0;
   /// The scan's points were moved by the motion within the sweep before registration

@@ -40,6 +40,15 @@ struct RecoveryConfig {
   std::vector<double> motion_scales = {0.0, 0.5, 1.5, 2.0, 3.0};
   /// Weight of a new frame in the running typical inlier share.
   double share_smoothing = 0.1;
+  /// A scan whose best inlier share after the retries is still below this fraction of the
+  /// typical share is taken as a break in the input (consecutive files not related by any
+  /// motion the registration finds: many frames missing, a scene cut): the map is cleared and
+  /// restarted from this scan at the constant-velocity prediction, whose motion is not learnt
+  /// as the velocity. Otherwise the scan, registered to a wrong pose, is merged into the map,
+  /// and the scans after it are matched to a map holding the scene twice. 0 (default): off.
+  /// On the real VLP-16 drive consecutive files agree under no rigid motion on many frames
+  /// (docs/accuracy.md, "Breaks in the real VLP-16 drive").
+  double reset_ratio = 0.0;
 };
 
 struct TrackerConfig {
