@@ -136,6 +136,14 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
     discovery.read_range("max_streams", config.discovery.max_streams, 1, 4096);
     discovery.reject_unknown();
   }
+  root.read("member_id", config.member_id);
+  {
+    YamlSection sharding(root.child("sharding"), "sharding");
+    sharding.read("enabled", config.sharding.enabled);
+    sharding.read_range("startup_wait_s", config.sharding.startup_wait_s, 0.0, 600.0);
+    sharding.read_range("max_extrapolation_s", config.sharding.max_extrapolation_s, 0.0, 600.0);
+    sharding.reject_unknown();
+  }
 
   const YAML::Node streams = root.child("streams");
   if (streams && !streams.IsNull()) {

@@ -1,11 +1,15 @@
 #include "litamin2/daemon/daemon_config.hpp"
 
 #include "litamin2/core/config_error.hpp"
+#include "litamin2/daemon/membership.hpp"
 #include "litamin2/daemon/stream_frames.hpp"
 #include "litamin2/service/logging.hpp"
 #include "litamin2/service/topic_names.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <array>
 #include <set>
 #include <string_view>
 
@@ -67,6 +71,30 @@ void validate(const DaemonConfig& config) {
     throw ConfigError("log_level: '" + config.log_level + "' is not a log level");
   if (config.streams.empty() && !config.discovery.enabled)
     throw ConfigError("streams: no streams configured and discovery.enabled is false");
+  if (!config.member_id.empty())
+    if (const auto why = member_id_error(config.member_id))
+      throw ConfigError("member_id: '" + config.member_id + "' is not a member id: " + *why);
+  const ShardingConfig& sharding = config.sharding;
+  if (sharding.enabled && !config.discovery.enabled)
+    throw ConfigError("sharding.enabled: needs discovery.enabled (only discovered streams move)");
+  if (sharding.enabled && !config.streams.empty())
+    throw ConfigError(
+        "sharding.enabled: configured streams would be tracked by every daemon; use discovery");
+  if (!(sharding.startup_wait_s >= 0.0)) throw ConfigError("sharding.startup_wait_s: must be >= 0");
+  if (!(sharding.max_extrapolation_s >= 0.0))
+    throw ConfigError("sharding.max_extrapolation_s: must be >= 0");
+}
+
+std::string resolved_member_id(const DaemonConfig& config) {
+  if (!config.member_id.empty()) return config.member_id;
+  std::array<char, 256> name{};
+  if (gethostname(name.data(), name.size() - 1) != 0)
+    throw ConfigError("member_id: not set and the host name is unknown");
+  const std::string host(name.data());
+  if (const auto why = member_id_error(host))
+    throw ConfigError("member_id: not set and the host name '" + host + "' is not a member id (" +
+                      *why + "); set member_id");
+  return host;
 }
 
 TrackerConfig daemon_tracker_defaults() {

@@ -30,6 +30,14 @@ StreamProcessor::StreamProcessor(StreamConfig config, ResultSink& sink, StreamSt
       sink_(sink),
       stats_(stats) {}
 
+StreamProcessor::StreamProcessor(StreamConfig config, ResultSink& sink, StreamStats& stats,
+                                 HandoverSeed seed, double max_extrapolation_s)
+    : StreamProcessor(std::move(config), sink, stats) {
+  keyframes_ = seed.next_keyframe_id;
+  seed_ = std::move(seed);
+  max_extrapolation_s_ = max_extrapolation_s;
+}
+
 void StreamProcessor::process(Frame& frame) {
   // With the stream's tracker.deskew enabled, a scan with per-point times (read from the
   // PointCloud2's time field, DaemonNode) is corrected for the motion within its sweep; one
@@ -44,12 +52,17 @@ void StreamProcessor::process(Frame& frame) {
   stats_.record_tracking_cpu(thread_cpu_seconds() - cpu_before);
   // Without an extrinsic the published pose is the tracker's, bit for bit.
   const Eigen::Isometry3d sensor_pose = result.pose;
-  const Eigen::Isometry3d pose =
+  Eigen::Isometry3d pose =
       has_extrinsic_ ? Eigen::Isometry3d(config_.extrinsic * sensor_pose * extrinsic_inverse_)
                      : sensor_pose;
-  const Matrix6d covariance = has_extrinsic_
-                                  ? transform_left_covariance(result.covariance, config_.extrinsic)
-                                  : result.covariance;
+  Matrix6d covariance = has_extrinsic_
+                            ? transform_left_covariance(result.covariance, config_.extrinsic)
+                            : result.covariance;
+  if (seed_ && !origin_) origin_ = handover_origin(*seed_, frame.stamp, max_extrapolation_s_);
+  if (origin_) {
+    pose = *origin_ * pose;
+    covariance = transform_left_covariance(covariance, *origin_);
+  }
   std::optional<TwistEstimate> twist;
   if (result.registered && last_pose_ && previous_stamp && *previous_stamp < frame.stamp) {
     const double seconds =
@@ -60,8 +73,13 @@ void StreamProcessor::process(Frame& frame) {
   sink_.publish_odometry(OdometryOutput{config_.id, frame.stamp, pose, covariance, result.keyframe,
                                         result.registered, frame.sequence, twist});
   if (result.keyframe) {
-    sink_.publish_keyframe(make_keyframe(*tracker_, result, KeyframeKey{config_.id, keyframes_},
-                                         frame.stamp, config_.extrinsic));
+    Keyframe keyframe = make_keyframe(*tracker_, result, KeyframeKey{config_.id, keyframes_},
+                                      frame.stamp, config_.extrinsic);
+    if (origin_) {
+      keyframe.odom_pose = *origin_ * keyframe.odom_pose;
+      keyframe.covariance = transform_left_covariance(keyframe.covariance, *origin_);
+    }
+    sink_.publish_keyframe(keyframe);
     ++keyframes_;
   }
   stats_.record_result(frame.arrival, std::chrono::steady_clock::now(), result.keyframe,

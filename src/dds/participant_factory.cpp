@@ -125,6 +125,9 @@ fdds::DomainParticipantQos participant_qos(const ParticipantConfig& config) {
     }
   }
   if (config.transport != TransportProfile::kXml) add_security_properties(config.security, qos);
+  if (!config.user_data.empty())
+    qos.user_data().data_vec(std::vector<eprosima::fastrtps::rtps::octet>(config.user_data.begin(),
+                                                                          config.user_data.end()));
   return qos;
 }
 
@@ -157,8 +160,11 @@ ParticipantPtr create_participant(const ParticipantConfig& config, std::string* 
       return fail("no participant profile '" + config.xml_profile + "' in '" + config.xml_file +
                   "'");
     }
-    if (config.security.enabled) {
-      add_security_properties(config.security, qos);
+    if (config.security.enabled || !config.user_data.empty()) {
+      if (config.security.enabled) add_security_properties(config.security, qos);
+      if (!config.user_data.empty())
+        qos.user_data().data_vec(std::vector<eprosima::fastrtps::rtps::octet>(
+            config.user_data.begin(), config.user_data.end()));
       participant = factory->create_participant(static_cast<fdds::DomainId_t>(config.domain_id),
                                                 qos, listener, mask);
     } else {

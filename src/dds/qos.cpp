@@ -94,6 +94,13 @@ fdds::DataReaderQos map_patches_reader_qos(bool fixed_payloads) {
   return qos;
 }
 
+fdds::DataReaderQos map_patch_ids_reader_qos() {
+  fdds::DataReaderQos qos = fdds::DATAREADER_QOS_DEFAULT;
+  common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::VOLATILE_DURABILITY_QOS,
+         fdds::KEEP_LAST_HISTORY_QOS, 1);
+  return qos;
+}
+
 // rt/tf has the odometry's QoS (reliable, volatile, keep last), as tf2_ros's broadcaster does.
 fdds::DataWriterQos tf_writer_qos(std::int32_t depth) {
   return odom_writer_qos(depth);

@@ -313,3 +313,31 @@ outputs: {frame_prefix: false, odom_frame: odom_lidar, base_frame: base_footprin
                 .find("outputs.tf_static_topic: equals outputs.tf_topic"),
             std::string::npos);
 }
+
+TEST(DaemonConfig, ShardingAndMemberId) {
+  const DaemonConfig defaults = parse("discovery: {enabled: true}\n");
+  EXPECT_FALSE(defaults.sharding.enabled);
+  EXPECT_TRUE(defaults.member_id.empty());
+  EXPECT_FALSE(litamin2::daemon::resolved_member_id(defaults).empty());
+  const DaemonConfig c = parse(
+      "member_id: host-2\nsharding: {enabled: true, startup_wait_s: 1.5, max_extrapolation_s: "
+      "4}\n");
+  EXPECT_TRUE(c.sharding.enabled);
+  EXPECT_EQ(c.member_id, "host-2");
+  EXPECT_EQ(litamin2::daemon::resolved_member_id(c), "host-2");
+  EXPECT_EQ(c.sharding.startup_wait_s, 1.5);
+  EXPECT_EQ(c.sharding.max_extrapolation_s, 4.0);
+}
+
+TEST(DaemonConfig, ShardingErrors) {
+  EXPECT_EQ(error_of("member_id: 'a b'\n"),
+            "member_id: 'a b' is not a member id: holds a character other than letters, digits, "
+            "'.', '_' and '-'");
+  EXPECT_EQ(error_of("streams: [{id: a}]\ndiscovery: {enabled: false}\nsharding: {enabled: true}"),
+            "sharding.enabled: needs discovery.enabled (only discovered streams move)");
+  EXPECT_EQ(error_of("streams: [{id: a}]\nsharding: {enabled: true}"),
+            "sharding.enabled: configured streams would be tracked by every daemon; use discovery");
+  EXPECT_EQ(error_of("sharding: {enabled: true, startup_wait_s: -1}"),
+            "sharding.startup_wait_s: -1 is out of range [0, 600]");
+  EXPECT_EQ(error_of("sharding: {enabeld: true}"), "sharding.enabeld: unknown key");
+}

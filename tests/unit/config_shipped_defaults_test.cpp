@@ -79,6 +79,10 @@ TEST(ConfigShippedDefaults, DaemonDdsOnlyConfigBehavesAsTheShippedFile) {
   EXPECT_EQ(shipped.discovery.enabled, minimal.discovery.enabled);
   EXPECT_EQ(shipped.discovery.pattern, minimal.discovery.pattern);
   EXPECT_EQ(shipped.discovery.max_streams, minimal.discovery.max_streams);
+  EXPECT_EQ(shipped.member_id, minimal.member_id);
+  EXPECT_EQ(shipped.sharding.enabled, minimal.sharding.enabled);
+  EXPECT_EQ(shipped.sharding.startup_wait_s, minimal.sharding.startup_wait_s);
+  EXPECT_EQ(shipped.sharding.max_extrapolation_s, minimal.sharding.max_extrapolation_s);
   EXPECT_EQ(tracker_config_to_yaml(shipped.tracker), tracker_config_to_yaml(minimal.tracker));
   EXPECT_EQ(shipped.threads, minimal.threads);
   EXPECT_EQ(shipped.queue_depth, minimal.queue_depth);

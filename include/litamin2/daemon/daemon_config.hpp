@@ -73,6 +73,21 @@ struct OutputsConfig {
   std::string tf_static_topic = "rt/tf_static";
 };
 
+/// Streams spread over several live daemons (docs/deploy.md, "Several daemon hosts"): each
+/// discovered stream is tracked by one daemon, chosen by rendezvous hashing over the members
+/// that DDS discovery reports alive (membership.hpp, rendezvous.hpp).
+struct ShardingConfig {
+  bool enabled = false;
+  /// Seconds after start before this daemon claims streams, so that it has discovered the
+  /// other daemons first (otherwise it would track every stream until they appear). At least
+  /// the time discovery takes: about one lease announcement period.
+  double startup_wait_s = 3.0;
+  /// A stream that moves here starts from its last odometry pose moved on at its last twist to
+  /// the first scan here (constant velocity), when the gap is at most this many seconds;
+  /// beyond, from the last pose as it is.
+  double max_extrapolation_s = 10.0;
+};
+
 /// Bounds on what a client may send (docs/security.md, "Validation").
 struct LimitsConfig {
   /// A PointCloud2 with more points (width * height) is rejected (too_many_points) before any
@@ -88,6 +103,10 @@ struct DaemonConfig {
   /// Statically configured streams.
   std::vector<StreamConfig> streams;
   DiscoveryConfig discovery;
+  /// This daemon's name among the daemons of the domain (membership.hpp's member_id_error);
+  /// empty: the host name.
+  std::string member_id;
+  ShardingConfig sharding;
   /// The global tracker section (streams and discovered streams start from it); absent keys
   /// from daemon_tracker_defaults().
   TrackerConfig tracker = daemon_tracker_defaults();
@@ -108,8 +127,14 @@ struct DaemonConfig {
 /// names or used twice, a discovery pattern without exactly one '*', an empty odometry frame,
 /// an unknown log level, neither streams nor discovery, and invalid tracker sections; frame
 /// names that are empty, start with '/' or hold whitespace (tf2 refuses them), equal odom and
-/// base frames, and frame_prefix false with more than one stream or with discovery.
+/// base frames, and frame_prefix false with more than one stream or with discovery; an invalid
+/// member_id; sharding without discovery or with configured streams (every daemon would track
+/// them), and negative sharding times.
 void validate(const DaemonConfig& config);
+
+/// config.member_id, or the host name when it is empty. Throws ConfigError (key member_id) when
+/// the result is not a member id.
+std::string resolved_member_id(const DaemonConfig& config);
 
 /// A stream for a discovered topic: id from the pattern, the global tracker, no extrinsic.
 StreamConfig discovered_stream(const DaemonConfig& config, const std::string& id,

@@ -8,6 +8,7 @@
 #include "litamin2/daemon/daemon_config.hpp"
 #include "litamin2/daemon/frame.hpp"
 #include "litamin2/daemon/result_sink.hpp"
+#include "litamin2/daemon/stream_handover.hpp"
 #include "litamin2/daemon/stream_stats.hpp"
 
 #include <memory>
@@ -20,13 +21,20 @@ class StreamProcessor {
   /// Throws ConfigError if the stream's tracker config is invalid. `sink` and `stats` must
   /// outlive the processor.
   StreamProcessor(StreamConfig config, ResultSink& sink, StreamStats& stats);
+  /// A stream taken over from another daemon (stream_handover.hpp): outputs in the seed's
+  /// odometry frame, from the origin at the first frame, keyframe ids from the seed's.
+  StreamProcessor(StreamConfig config, ResultSink& sink, StreamStats& stats, HandoverSeed seed,
+                  double max_extrapolation_s);
 
   /// Processes the next frame of the stream (frames must come in order, one at a time).
   void process(Frame& frame);
 
   const StreamConfig& config() const { return config_; }
   const Tracker& tracker() const { return *tracker_; }
+  /// The id the next keyframe gets.
   std::uint64_t keyframes() const { return keyframes_; }
+  /// The handover origin in use (after the first frame of a taken-over stream).
+  const std::optional<Eigen::Isometry3d>& origin() const { return origin_; }
 
  private:
   StreamConfig config_;
@@ -36,6 +44,10 @@ class StreamProcessor {
   ResultSink& sink_;
   StreamStats& stats_;
   std::uint64_t keyframes_ = 0;
+  /// Handover: the seed until the first frame, then the origin O applied to every output.
+  std::optional<HandoverSeed> seed_;
+  double max_extrapolation_s_ = 0.0;
+  std::optional<Eigen::Isometry3d> origin_;
   /// The last frame's stamp (deskew's clock, Tracker::restart_clock).
   std::optional<Stamp> last_stamp_;
   /// The last frame's published (base) pose, for the twist.

@@ -39,6 +39,10 @@ struct ParticipantConfig {
   std::string loopback_address = "127.0.0.1";
   /// DDS-Security (any transport profile; with kXml added to the profile's QoS).
   service::SecurityConfig security;
+  /// The participant's USER_DATA QoS (any transport profile; with kXml it replaces the
+  /// profile's), seen by every other participant in discovery: litamin2d puts its member id
+  /// there (daemon/membership.hpp). Empty: none.
+  std::string user_data;
 
   /// Participant profile name used in the shipped XML files (config/dds/*.xml).
   static constexpr std::string_view kDefaultXmlProfile = "litamin2";

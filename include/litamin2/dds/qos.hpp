@@ -36,6 +36,10 @@ eprosima::fastdds::dds::DataWriterQos map_patches_writer_qos(std::int32_t histor
 /// larger before it reserves or reassembles it (ReaderHistory::can_change_be_added_nts), one
 /// buffer allocated at start (allocated_samples 1), more on demand.
 eprosima::fastdds::dds::DataReaderQos map_patches_reader_qos(bool fixed_payloads = false);
+/// rt/litamin2/map_patches read by a daemon only for the latest keyframe id of each stream
+/// (sharding's handover): reliable, volatile (no history replayed at match), keep-last 1 per
+/// stream instance.
+eprosima::fastdds::dds::DataReaderQos map_patch_ids_reader_qos();
 /// rt/litamin2/status: reliable, volatile, keep-last `depth`.
 eprosima::fastdds::dds::DataWriterQos status_writer_qos(std::int32_t depth = 10);
 eprosima::fastdds::dds::DataReaderQos status_reader_qos(std::int32_t depth = 10);

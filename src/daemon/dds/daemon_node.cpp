@@ -17,6 +17,7 @@
 #include "sensor_msgs/msg/PointCloud2PubSubTypes.h"
 #include "tf2_msgs/msg/TFMessagePubSubTypes.h"
 
+#include <spdlog/fmt/ranges.h>
 #include <spdlog/spdlog.h>
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
@@ -24,6 +25,8 @@
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
 
+#include <mutex>
+#include <sstream>
 #include <stdexcept>
 
 namespace litamin2::daemon {
@@ -39,7 +42,12 @@ struct DaemonNode::Stream {
   fdds::Publisher* patch_publisher = nullptr;
   fdds::DataWriter* patch_writer = nullptr;
   std::unique_ptr<DdsStreamSink> sink;
+  /// Replaced when a stream moves back here (sharding): guarded against the worker running a
+  /// frame.
+  std::mutex processor_mutex;
   std::unique_ptr<StreamProcessor> processor;
+  /// Sharding: the member tracking this stream now, when it is not this daemon.
+  std::string moved_to;
   StreamScheduler::Handle handle = 0;
   std::unique_ptr<PointsListener> listener;
   fdds::DataReader* reader = nullptr;
@@ -65,10 +73,20 @@ DaemonNode::DaemonNode(DaemonConfig config) : config_(std::move(config)) {
   sensor_msgs::msg::PointCloud2PubSubType points_type_probe;
   discovery_ = std::make_unique<PublisherDiscovery>(points_type_probe.getName());
   std::string error;
-  participant_ =
-      dds::create_participant(dds::participant_config(config_.dds, config_.security, "litamin2d"),
-                              &error, discovery_.get(), fdds::StatusMask::none());
+  dds::ParticipantConfig participant_config =
+      dds::participant_config(config_.dds, config_.security, "litamin2d");
+  if (config_.sharding.enabled) {
+    membership_.emplace(resolved_member_id(config_));
+    participant_config.user_data = member_user_data(membership_->self());
+  }
+  participant_ = dds::create_participant(participant_config, &error, discovery_.get(),
+                                         fdds::StatusMask::none());
   if (!participant_) throw std::runtime_error("cannot create the DDS participant: " + error);
+  {
+    std::ostringstream guid;
+    guid << participant_->guid().guidPrefix;
+    own_participant_ = guid.str();
+  }
 
   // Received scans are deserialised by a CheckedType: malformed CDR is counted, not fatal.
   points_type_ = dds::register_type(
@@ -102,6 +120,21 @@ DaemonNode::DaemonNode(DaemonConfig config) : config_(std::move(config)) {
   }
 
   for (const StreamConfig& stream : config_.streams) add_stream(stream);
+  if (membership_) {
+    handover_.set_map_patches_topic(config_.outputs.map_patches_topic);
+    // The patches are in one partition per stream: read them all.
+    patch_ids_subscriber_ = participant_->create_subscriber(dds::every_stream_subscriber_qos());
+    patch_ids_reader_ = patch_ids_subscriber_ ? patch_ids_subscriber_->create_datareader(
+                                                    patches_topic_, dds::map_patch_ids_reader_qos(),
+                                                    &handover_, fdds::StatusMask::data_available())
+                                              : nullptr;
+    if (!patch_ids_reader_) throw std::runtime_error("cannot create the map patch id reader");
+    claim_after_ =
+        Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                           std::chrono::duration<double>(config_.sharding.startup_wait_s));
+    spdlog::info("sharding: member {}, claiming streams after {} s", membership_->self(),
+                 config_.sharding.startup_wait_s);
+  }
   next_status_ = Clock::now();
   spdlog::info("DDS participant up: domain {} ({}), profile {}, {} configured stream(s){}",
                config_.dds.domain, service::to_string(config_.dds.domain_source),
@@ -117,15 +150,13 @@ DaemonNode::~DaemonNode() {
   discovery_.reset();
 }
 
-DaemonNode::Stream& DaemonNode::add_stream(StreamConfig config) {
+DaemonNode::Stream& DaemonNode::add_stream(StreamConfig config, std::optional<HandoverSeed> seed) {
   auto stream = std::make_unique<Stream>();
   stream->config = std::move(config);
   Stream& s = *stream;
   const std::string odom_topic_name = "rt/" + s.config.id + "/" + config_.outputs.odom_suffix;
-  s.points_topic = participant_->create_topic(s.config.topic, points_type_.get_type_name(),
-                                              fdds::TOPIC_QOS_DEFAULT);
-  auto* odom_topic = participant_->create_topic(odom_topic_name, odom_type_.get_type_name(),
-                                                fdds::TOPIC_QOS_DEFAULT);
+  s.points_topic = topic(s.config.topic, points_type_.get_type_name());
+  auto* odom_topic = topic(odom_topic_name, odom_type_.get_type_name());
   if (!s.points_topic || !odom_topic)
     throw std::runtime_error("stream " + s.config.id + ": cannot create its topics");
   s.odom_writer = publisher_->create_datawriter(odom_topic, dds::odom_writer_qos());
@@ -141,8 +172,6 @@ DaemonNode::Stream& DaemonNode::add_stream(StreamConfig config) {
   if (!s.patch_writer) {
     if (s.patch_publisher) participant_->delete_publisher(s.patch_publisher);
     publisher_->delete_datawriter(s.odom_writer);
-    participant_->delete_topic(odom_topic);
-    participant_->delete_topic(s.points_topic);
     throw std::runtime_error("stream " + s.config.id + ": cannot create its writer of " +
                              config_.outputs.map_patches_topic + " in partition " + s.config.id +
                              " (refused by the permissions?)");
@@ -157,9 +186,12 @@ DaemonNode::Stream& DaemonNode::add_stream(StreamConfig config) {
     if (!tf_static_writer_->write(&static_transforms_))
       spdlog::warn("stream {}: writing {} failed", s.config.id, config_.outputs.tf_static_topic);
   }
-  s.processor = std::make_unique<StreamProcessor>(s.config, *s.sink, s.stats);
-  StreamProcessor* processor = s.processor.get();
-  s.handle = scheduler_->add_stream(s.config.id, [processor](Frame& f) { processor->process(f); });
+  start_processor(s, std::move(seed));
+  Stream* sp = &s;
+  s.handle = scheduler_->add_stream(s.config.id, [sp](Frame& f) {
+    std::lock_guard lock(sp->processor_mutex);
+    sp->processor->process(f);
+  });
   // LiTAMIN2 uses only x, y, z (the intensity field is not read), and the per-point time when
   // the stream deskews (tracker.deskew.enabled): a malformed or out-of-sweep time field is a
   // bad message, counted and dropped.
@@ -175,6 +207,108 @@ DaemonNode::Stream& DaemonNode::add_stream(StreamConfig config) {
                    : std::string());
   streams_.push_back(std::move(stream));
   return s;
+}
+
+fdds::Topic* DaemonNode::topic(const std::string& name, const std::string& type) {
+  // The handover's odometry reader (sharding) may have made the stream's odom topic already.
+  if (auto* existing = participant_->lookup_topicdescription(name))
+    return dynamic_cast<fdds::Topic*>(existing);
+  return participant_->create_topic(name, type, fdds::TOPIC_QOS_DEFAULT);
+}
+
+void DaemonNode::start_processor(Stream& s, std::optional<HandoverSeed> seed) {
+  auto processor = seed ? std::make_unique<StreamProcessor>(s.config, *s.sink, s.stats, *seed,
+                                                            config_.sharding.max_extrapolation_s)
+                        : std::make_unique<StreamProcessor>(s.config, *s.sink, s.stats);
+  std::lock_guard lock(s.processor_mutex);
+  s.processor = std::move(processor);
+}
+
+DaemonNode::Stream* DaemonNode::find_by_id(const std::string& id) {
+  for (auto& s : streams_)
+    if (s->config.id == id) return s.get();
+  return nullptr;
+}
+
+std::optional<HandoverSeed> DaemonNode::handover_seed(const std::string& id) const {
+  return handover_.seed(id);
+}
+
+void DaemonNode::on_sharded_writer(const DiscoveredWriter& writer) {
+  const std::optional<std::string> id = pattern_->match(writer.topic);
+  if (!id) return;
+  auto it = known_.find(*id);
+  if (it == known_.end()) {
+    if (known_.size() >= static_cast<std::size_t>(config_.discovery.max_streams)) {
+      spdlog::warn("ignoring {}: discovery.max_streams ({}) reached", writer.topic,
+                   config_.discovery.max_streams);
+      return;
+    }
+    it = known_.emplace(*id, KnownStream{writer.topic, writer.reliable, nullptr}).first;
+    // Every known stream's odometry, whoever tracks it: the seed if it moves here.
+    const std::string odom = "rt/" + *id + "/" + config_.outputs.odom_suffix;
+    handover_.add_stream(*id, odom);
+    auto* topic =
+        participant_->create_topic(odom, odom_type_.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
+    if (topic)
+      it->second.odom_reader = subscriber_->create_datareader(
+          topic, dds::odom_reader_qos(1), &handover_, fdds::StatusMask::data_available());
+    if (!it->second.odom_reader)
+      spdlog::warn("stream {}: cannot read {}: a takeover would start a new odometry frame", *id,
+                   odom);
+  } else if (it->second.topic != writer.topic) {
+    spdlog::warn("ignoring {}: stream id {} is taken by {}", writer.topic, *id, it->second.topic);
+    return;
+  } else if (!writer.reliable && it->second.reliable) {
+    it->second.reliable = false;
+    if (Stream* s = find_by_id(*id); s && s->reader && s->reliable) {
+      spdlog::warn("stream {}: a best-effort publisher appeared; reading best-effort", *id);
+      detach_reader(*s);
+      attach_reader(*s, false);
+    }
+  }
+}
+
+void DaemonNode::reshard(Clock::time_point now) {
+  if (!membership_ || now < claim_after_) return;
+  if (!claiming_) {
+    claiming_ = true;
+    spdlog::info("sharding: live members {}", fmt::join(membership_->live(), ", "));
+  }
+  for (const auto& [id, known] : known_) {
+    const std::string owner = membership_->owner(id);
+    Stream* s = find_by_id(id);
+    if (owner == membership_->self()) {
+      if (s && s->reader) continue;
+      std::optional<HandoverSeed> seed = handover_seed(id);
+      if (seed) {
+        ++takeovers_;
+        spdlog::info(
+            "stream {}: tracked here from the last pose ({:.2f}, {:.2f}, {:.2f}) at {}.{:09d}, "
+            "keyframe ids from {}",
+            id, seed->pose.translation().x(), seed->pose.translation().y(),
+            seed->pose.translation().z(), seed->stamp.nanoseconds / 1'000'000'000,
+            seed->stamp.nanoseconds % 1'000'000'000, seed->next_keyframe_id);
+      } else {
+        spdlog::info("stream {}: tracked here (no earlier odometry seen)", id);
+      }
+      if (!s) {
+        s = &add_stream(discovered_stream(config_, id, known.topic), std::move(seed));
+      } else {
+        start_processor(*s, std::move(seed));
+      }
+      s->moved_to.clear();
+      attach_reader(*s, known.reliable);
+    } else if (s && s->reader) {
+      spdlog::info("stream {}: moved to member {}", id, owner);
+      detach_reader(*s);
+      s->moved_to = owner;
+    }
+  }
+}
+
+std::vector<std::string> DaemonNode::members() const {
+  return membership_ ? membership_->live() : std::vector<std::string>{};
 }
 
 DaemonNode::Stream* DaemonNode::find_by_topic(const std::string& topic) {
@@ -205,6 +339,10 @@ void DaemonNode::detach_reader(Stream& s) {
 }
 
 void DaemonNode::on_writer(const DiscoveredWriter& writer) {
+  if (membership_) {
+    on_sharded_writer(writer);
+    return;
+  }
   Stream* s = find_by_topic(writer.topic);
   if (!s) {
     if (!pattern_) return;
@@ -245,6 +383,27 @@ void DaemonNode::poll(Clock::time_point now) {
       spdlog::error("cannot start a stream for {}: {}", writer.topic, e.what());
     }
   }
+  if (membership_) {
+    bool changed = false;
+    for (const ParticipantEvent& event : discovery_->take_participants()) {
+      if (event.participant == own_participant_) continue;
+      changed = (event.alive ? membership_->discovered(event.participant, event.user_data)
+                             : membership_->lost(event.participant)) ||
+                changed;
+    }
+    if (membership_->rejected() > reported_rejected_members_) {
+      spdlog::warn("sharding: {} participant announcement(s) with an invalid member id rejected",
+                   membership_->rejected() - reported_rejected_members_);
+      reported_rejected_members_ = membership_->rejected();
+    }
+    if (changed && claiming_)
+      spdlog::info("sharding: live members {}", fmt::join(membership_->live(), ", "));
+    try {
+      reshard(now);
+    } catch (const std::exception& e) {
+      spdlog::error("sharding: cannot start a stream: {}", e.what());
+    }
+  }
   if (now >= next_status_) {
     publish_status(now);
     next_status_ = now + std::chrono::duration_cast<Clock::duration>(
@@ -271,6 +430,7 @@ std::vector<StreamStatus> DaemonNode::status(Clock::time_point now) const {
     st.reading = s->reader != nullptr;
     st.reliable = s->reliable;
     st.samples_lost = s->listener->samples_lost();
+    st.moved_to = s->moved_to;
     statuses.push_back(std::move(st));
   }
   return statuses;

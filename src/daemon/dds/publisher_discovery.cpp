@@ -2,6 +2,8 @@
 
 #include "litamin2/dds/qos.hpp"
 
+#include <sstream>
+
 namespace litamin2::daemon {
 
 PublisherDiscovery::PublisherDiscovery(std::string type_name) : type_name_(std::move(type_name)) {}
@@ -17,6 +19,37 @@ void PublisherDiscovery::on_publisher_discovery(
   writer.reliable = dds::writer_is_reliable(info);
   std::lock_guard lock(mutex_);
   pending_.push_back(std::move(writer));
+}
+
+void PublisherDiscovery::on_participant_discovery(
+    eprosima::fastdds::dds::DomainParticipant*,
+    eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) {
+  using Info = eprosima::fastrtps::rtps::ParticipantDiscoveryInfo;
+  ParticipantEvent event;
+  std::ostringstream guid;
+  guid << info.info.m_guid.guidPrefix;
+  event.participant = guid.str();
+  switch (info.status) {
+    case Info::DISCOVERED_PARTICIPANT:
+    case Info::CHANGED_QOS_PARTICIPANT: {
+      const auto& data = info.info.m_userData.data_vec();
+      event.user_data.assign(data.begin(), data.end());
+      break;
+    }
+    case Info::REMOVED_PARTICIPANT:
+    case Info::DROPPED_PARTICIPANT:
+      event.alive = false;
+      break;
+  }
+  std::lock_guard lock(mutex_);
+  participants_.push_back(std::move(event));
+}
+
+std::vector<ParticipantEvent> PublisherDiscovery::take_participants() {
+  std::lock_guard lock(mutex_);
+  std::vector<ParticipantEvent> out;
+  out.swap(participants_);
+  return out;
 }
 
 std::vector<DiscoveredWriter> PublisherDiscovery::take() {

@@ -21,9 +21,10 @@ diagnostic_msgs::msg::DiagnosticArray make_status_message(const std::vector<Stre
     status.hardware_id(s.id);
     auto& v = status.values();
     v.push_back(key_value("topic", s.topic));
-    v.push_back(key_value("reader", !s.reading   ? "waiting for a publisher"
-                                    : s.reliable ? "reliable"
-                                                 : "best_effort"));
+    v.push_back(key_value("reader", !s.moved_to.empty() ? "moved to member " + s.moved_to
+                                    : !s.reading        ? "waiting for a publisher"
+                                    : s.reliable        ? "reliable"
+                                                        : "best_effort"));
     v.push_back(key_value("frames_per_second", fixed_number(s.stats.frames_per_second, 2)));
     v.push_back(key_value("latency_p50_ms", fixed_number(s.stats.latency_p50_ms, 3)));
     v.push_back(key_value("latency_p99_ms", fixed_number(s.stats.latency_p99_ms, 3)));

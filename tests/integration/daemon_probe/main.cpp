@@ -36,6 +36,8 @@ namespace {
 
 struct Received {
   geometry_msgs::msg::Pose pose;
+  /// Wall-clock time of reception (seconds since the epoch), for --arrivals-out.
+  double arrival = 0.0;
   std::int32_t sec = 0;
   std::uint32_t nanosec = 0;
   std::string frame_id, child_frame_id;
@@ -49,7 +51,10 @@ class OdomListener : public fdds::DataReaderListener {
     while (reader->take_next_sample(&msg, &info) == ReturnCode_t::RETCODE_OK) {
       if (!info.valid_data) continue;
       std::lock_guard lock(mutex);
-      samples.push_back({msg.pose().pose(), msg.header().stamp().sec(),
+      const double arrival =
+          std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
+              .count();
+      samples.push_back({msg.pose().pose(), arrival, msg.header().stamp().sec(),
                          msg.header().stamp().nanosec(), msg.header().frame_id(),
                          msg.child_frame_id()});
     }
@@ -91,7 +96,7 @@ int main(int argc, char** argv) {
   CLI::App app{"daemon_probe: counts and checks litamin2d's odometry"};
   std::vector<std::string> streams;
   litamin2::testing::ProbeParticipantOptions dds_options;
-  std::string ready_file, poses_out;
+  std::string ready_file, poses_out, arrivals_out;
   std::size_t expect = 0;
   double timeout_s = 60.0;
   app.add_option("--stream", streams, "ID or ID=REFERENCE_POSES_KITTI (repeatable)")->required();
@@ -100,6 +105,9 @@ int main(int argc, char** argv) {
   app.add_option("--timeout", timeout_s);
   app.add_option("--ready-file", ready_file, "created once every odom reader is matched");
   app.add_option("--poses-out", poses_out, "prefix of files with the received poses (KITTI)");
+  app.add_option("--arrivals-out", arrivals_out,
+                 "prefix of files with one line per message: reception time (s since the epoch), "
+                 "header stamp (s), x, y, z");
   CLI11_PARSE(app, argc, argv);
 
   litamin2::dds::ParticipantPtr participant =
@@ -182,6 +190,14 @@ int main(int argc, char** argv) {
       for (const Received& r : samples) poses.push_back(litamin2::dds::from_pose_msg(r.pose));
       io::write_kitti_poses(poses_out + p.id + ".txt", poses);
     }
+    if (!arrivals_out.empty()) {
+      std::FILE* f = std::fopen((arrivals_out + p.id + ".txt").c_str(), "w");
+      for (const Received& r : samples)
+        if (f)
+          std::fprintf(f, "%.6f %d.%09u %.6f %.6f %.6f\n", r.arrival, r.sec, r.nanosec,
+                       r.pose.position().x(), r.pose.position().y(), r.pose.position().z());
+      if (f) std::fclose(f);
+    }
     if (p.reference.empty()) continue;
     const std::vector<Eigen::Isometry3d> reference = io::read_kitti_poses(p.reference);
     std::size_t exact = 0;
@@ -217,10 +233,10 @@ int main(int argc, char** argv) {
       auto& v = status_listener.latest[p.id];
       std::printf(
           "status %s: processed %s, dropped %s, bad %s, p50 %s ms, p99 %s ms, map %s, tracking "
-          "cpu %s s\n",
+          "cpu %s s, keyframes %s\n",
           p.id.c_str(), v["frames_processed"].c_str(), v["frames_dropped"].c_str(),
           v["bad_messages"].c_str(), v["latency_p50_ms"].c_str(), v["latency_p99_ms"].c_str(),
-          v["map_size"].c_str(), v["tracking_cpu_s"].c_str());
+          v["map_size"].c_str(), v["tracking_cpu_s"].c_str(), v["keyframes"].c_str());
       if (v["frames_processed"] != std::to_string(expect) || v["frames_dropped"] != "0") ok = false;
     }
   }

@@ -6,11 +6,18 @@
 /// stream's odom -> base per pose) and rt/tf_static (every stream's base -> sensor,
 /// transient-local). Streams come from the config and, with discovery enabled, from every
 /// PointCloud2 topic matching the pattern. The main loop calls poll(); shutdown() stops input,
-/// drains the queues within the configured time and publishes a final status.
+/// drains the queues within the configured time and publishes a final status. With sharding
+/// (docs/deploy.md, "Several daemon hosts") the participant announces the member id in its
+/// USER_DATA, the node follows the live daemons (Membership) and tracks only the discovered streams
+/// that rendezvous hashing gives it; it reads every known stream's rt/<stream>/odom and the map
+/// patches' keyframe ids (HandoverListener, every partition) so that a stream moving here continues
+/// its odometry frame and keyframe ids (stream_handover.hpp).
 
 #include "litamin2/daemon/daemon_config.hpp"
+#include "litamin2/daemon/dds/handover_listener.hpp"
 #include "litamin2/daemon/dds/publisher_discovery.hpp"
 #include "litamin2/daemon/dds/status_message.hpp"
+#include "litamin2/daemon/membership.hpp"
 #include "litamin2/daemon/stream_scheduler.hpp"
 #include "litamin2/dds/participant_factory.hpp"
 #include "litamin2/service/topic_names.hpp"
@@ -56,7 +63,12 @@ class DaemonNode {
   /// Idempotent.
   DrainResult shutdown();
 
+  /// Streams with a tracker here (sharding: also those that moved away since).
   std::size_t stream_count() const { return streams_.size(); }
+  /// Sharding: the live members (empty without sharding).
+  std::vector<std::string> members() const;
+  /// Sharding: streams started here from another daemon's last pose.
+  std::uint64_t takeovers() const { return takeovers_; }
   /// Every stream's statistics and counters (levels and messages as in the last status).
   std::vector<StreamStatus> status(Clock::time_point now = Clock::now()) const;
   /// One line for logs and sd_notify STATUS=.
@@ -65,7 +77,14 @@ class DaemonNode {
  private:
   struct Stream;
 
-  Stream& add_stream(StreamConfig config);
+  Stream& add_stream(StreamConfig config, std::optional<HandoverSeed> seed = std::nullopt);
+  /// The participant's topic `name`, created (of `type`) if it does not exist yet.
+  eprosima::fastdds::dds::Topic* topic(const std::string& name, const std::string& type);
+  void start_processor(Stream& stream, std::optional<HandoverSeed> seed);
+  Stream* find_by_id(const std::string& id);
+  void on_sharded_writer(const DiscoveredWriter& writer);
+  void reshard(Clock::time_point now);
+  std::optional<HandoverSeed> handover_seed(const std::string& id) const;
   Stream* find_by_topic(const std::string& topic);
   void on_writer(const DiscoveredWriter& writer);
   void attach_reader(Stream& stream, bool reliable);
@@ -93,6 +112,23 @@ class DaemonNode {
   tf2_msgs::msg::TFMessage static_transforms_;
   std::unique_ptr<StreamScheduler> scheduler_;
   std::vector<std::unique_ptr<Stream>> streams_;
+  /// Sharding: every discovered stream, tracked here or not.
+  struct KnownStream {
+    std::string topic;
+    bool reliable = true;
+    eprosima::fastdds::dds::DataReader* odom_reader = nullptr;
+  };
+  std::optional<Membership> membership_;
+  std::map<std::string, KnownStream> known_;
+  HandoverListener handover_;
+  eprosima::fastdds::dds::DataReader* patch_ids_reader_ = nullptr;
+  /// patch_ids_reader_'s subscriber: every partition (one per stream, dds/stream_partition.hpp).
+  eprosima::fastdds::dds::Subscriber* patch_ids_subscriber_ = nullptr;
+  std::string own_participant_;
+  Clock::time_point claim_after_{};
+  bool claiming_ = false;
+  std::uint64_t takeovers_ = 0;
+  std::uint64_t reported_rejected_members_ = 0;
   Clock::time_point next_status_{};
   bool stopped_ = false;
 };

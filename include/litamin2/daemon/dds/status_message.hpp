@@ -22,6 +22,9 @@ struct StreamStatus {
   bool reading = false;
   bool reliable = false;
   std::uint64_t samples_lost = 0;
+  /// Sharding: the member tracking the stream when it is not this daemon (the stream moved
+  /// away); empty otherwise.
+  std::string moved_to;
   /// 0 OK, 1 WARN (frames dropped or bad messages since the last status), 2 ERROR.
   std::uint8_t level = 0;
   std::string message = "ok";

@@ -1,0 +1,49 @@
+#include "litamin2/daemon/rendezvous.hpp"
+
+namespace litamin2::daemon {
+
+namespace {
+
+constexpr std::uint64_t kFnvOffset = 14695981039346656037ull;
+constexpr std::uint64_t kFnvPrime = 1099511628211ull;
+
+std::uint64_t fnv1a(std::uint64_t h, std::string_view bytes) {
+  for (const char c : bytes) {
+    h ^= static_cast<unsigned char>(c);
+    h *= kFnvPrime;
+  }
+  return h;
+}
+
+std::uint64_t splitmix64(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+
+}  // namespace
+
+std::uint64_t rendezvous_weight(std::string_view member, std::string_view stream) {
+  std::uint64_t h = fnv1a(kFnvOffset, member);
+  h = fnv1a(h, std::string_view("\0", 1));
+  h = fnv1a(h, stream);
+  return splitmix64(h);
+}
+
+std::optional<std::string> rendezvous_owner(const std::vector<std::string>& members,
+                                            std::string_view stream) {
+  const std::string* best = nullptr;
+  std::uint64_t best_weight = 0;
+  for (const std::string& m : members) {
+    const std::uint64_t w = rendezvous_weight(m, stream);
+    if (!best || w > best_weight || (w == best_weight && m < *best)) {
+      best = &m;
+      best_weight = w;
+    }
+  }
+  if (!best) return std::nullopt;
+  return *best;
+}
+
+}  // namespace litamin2::daemon
