@@ -32,6 +32,7 @@ check core "core" no no
 check io "core io" no no
 check eval "core eval" no no
 check service "service" no no
+check metrics "service metrics" no no
 check mapping "core mapping" no no
 check store "core mapping store" no no
 check sim "core io sim" no no

@@ -42,11 +42,17 @@ void validate(const AggregatorConfig& config) {
     check_topic(t.tf, "topics.tf");
     if (distinct.count(t.tf)) throw ConfigError("topics.tf: '" + t.tf + "' is another topic's");
   }
+  if (!t.diagnostics.empty()) {
+    check_topic(t.diagnostics, "topics.diagnostics");
+    if (distinct.count(t.diagnostics) || t.diagnostics == t.tf)
+      throw ConfigError("topics.diagnostics: '" + t.diagnostics + "' is another topic's");
+  }
   if (!t.map_cloud.empty()) {
     check_topic(t.map_cloud, "topics.map_cloud");
-    if (distinct.count(t.map_cloud) || t.map_cloud == t.tf)
+    if (distinct.count(t.map_cloud) || t.map_cloud == t.tf || t.map_cloud == t.diagnostics)
       throw ConfigError("topics.map_cloud: '" + t.map_cloud + "' is another topic's");
   }
+  if (const auto why = service::metrics_config_error(config.metrics)) throw ConfigError(*why);
   if (config.store.path.empty()) throw ConfigError("store.path: must not be empty");
   try {
     mapping::validate(config.mapper);

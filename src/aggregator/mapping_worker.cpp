@@ -30,6 +30,7 @@ MappingWorker::MappingWorker(AggregatorCore& core, PatchQueue& queue, Aggregator
   status_.keyframes = mapper.stats().keyframes;
   status_.loops = mapper.loops().size();
   status_.optimizations = mapper.stats().optimizations;
+  status_.merges = mapper.stats().merges;
   status_.tiles = core_.tiles().index().size();
   status_.map_pending = core_.map_pending();
   map_anchor_ = mapper.map_anchor();
@@ -128,7 +129,9 @@ bool MappingWorker::full_pass(bool stopping, TurnReport* report) {
     if (solved.result.diverged) {
       spdlog::warn("full pass: {} segments: the solution ran off, refused", solved.poses.size());
     } else {
-      spdlog::info(
+      // Debug: one runs every full_pass.min_interval_s while loops come in (19 lines in the
+      // aggregator log of one demo run); their count is in the status and /metrics.
+      spdlog::debug(
           "full pass: {} segments, {} loop edges, {} iterations, {:.1f} ms in the background",
           solved.poses.size(), solved.loop_edges, solved.result.iterations, solved.milliseconds);
     }
@@ -205,13 +208,17 @@ void MappingWorker::process(std::vector<Keyframe>& batch, TurnReport& report) {
   status_.duplicates = core_.duplicates();
   status_.loops = mapper.loops().size();
   status_.optimizations = mapper.stats().optimizations;
+  status_.merges = mapper.stats().merges;
   ++status_.batches;
   status_.ingest_cpu = core_.cpu();
   status_.mapper_cpu = mapper.cpu();
   status_.map_pending = core_.map_pending();
   status_.last_store_ms = r.store_ms;
   status_.last_mapper_ms = r.mapper_ms;
-  if (r.optimization.ran) status_.last_optimize_ms = r.optimization.milliseconds;
+  if (r.optimization.ran) {
+    status_.last_optimize_ms = r.optimization.milliseconds;
+    status_.optimize_seconds.observe(r.optimization.milliseconds * 1e-3);
+  }
   for (const KeyframeKey& key : r.keys) {
     StreamCounts& c = status_.streams[key.stream];
     ++c.keyframes;

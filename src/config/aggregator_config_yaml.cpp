@@ -32,6 +32,7 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
     topics.read("map_summary", config.topics.map_summary);
     topics.read("map_tiles", config.topics.map_tiles);
     topics.read("status", config.topics.status);
+    topics.read("diagnostics", config.topics.diagnostics);
     topics.read("odometry", config.topics.odometry);
     topics.read("map_odometry", config.topics.map_odometry);
     topics.read("tf", config.topics.tf);
@@ -90,6 +91,7 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
   }
   config.watchdog =
       service::watchdog_config_from_yaml(root.child("watchdog"), 86400.0, config.watchdog);
+  config.metrics = service::metrics_config_from_yaml(root.child("metrics"));
   service::read_log_level(root, config.log_level);
   root.reject_unknown();
   validate(config);

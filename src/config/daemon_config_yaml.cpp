@@ -179,6 +179,7 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
     outputs.read("odom_suffix", config.outputs.odom_suffix);
     outputs.read("map_patches_topic", config.outputs.map_patches_topic);
     outputs.read("status_topic", config.outputs.status_topic);
+    outputs.read("diagnostics_topic", config.outputs.diagnostics_topic);
     outputs.read_range("status_period_s", config.outputs.status_period_s, 0.01, 3600.0);
     outputs.read_range("map_patch_history", config.outputs.map_patch_history, 1, 1'000'000);
     outputs.read("odom_frame", config.outputs.odom_frame);
@@ -193,6 +194,7 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
 
   config.watchdog =
       service::watchdog_config_from_yaml(root.child("watchdog"), 3600.0, config.watchdog);
+  config.metrics = service::metrics_config_from_yaml(root.child("metrics"));
   service::read_log_level(root, config.log_level);
   root.reject_unknown();
   validate(config);

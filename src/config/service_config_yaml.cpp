@@ -71,6 +71,15 @@ WatchdogConfig watchdog_config_from_yaml(const YAML::Node& node, double max_stal
   return config;
 }
 
+MetricsConfig metrics_config_from_yaml(const YAML::Node& node) {
+  MetricsConfig config;
+  YamlSection metrics(node, "metrics");
+  metrics.read("listen", config.listen);
+  metrics.reject_unknown();
+  if (const auto why = metrics_config_error(config)) throw ConfigError(*why);
+  return config;
+}
+
 void read_log_level(YamlSection& section, std::string& level) {
   std::vector<std::pair<std::string, std::string>> names;
   for (const char* name : kLogLevels) names.emplace_back(name, name);

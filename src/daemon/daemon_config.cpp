@@ -52,6 +52,12 @@ void validate(const DaemonConfig& config) {
   check_topic(config.outputs.odom_suffix, "outputs.odom_suffix");
   check_topic(config.outputs.map_patches_topic, "outputs.map_patches_topic");
   check_topic(config.outputs.status_topic, "outputs.status_topic");
+  if (!config.outputs.diagnostics_topic.empty()) {
+    check_topic(config.outputs.diagnostics_topic, "outputs.diagnostics_topic");
+    if (config.outputs.diagnostics_topic == config.outputs.status_topic)
+      throw ConfigError("outputs.diagnostics_topic: equals outputs.status_topic");
+  }
+  if (const auto why = service::metrics_config_error(config.metrics)) throw ConfigError(*why);
   const OutputsConfig& out = config.outputs;
   check_frame(out.odom_frame, "outputs.odom_frame");
   check_frame(out.base_frame, "outputs.base_frame");

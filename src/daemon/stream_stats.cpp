@@ -69,6 +69,7 @@ void StreamStats::record_result(Clock::time_point arrival, Clock::time_point pub
   if (keyframe) ++counters_.keyframes;
   if (!registered) ++counters_.frames_unregistered;
   counters_.map_size = map_size;
+  counters_.latency_seconds.observe(latency_ms * 1e-3);
   samples_.push_back({published, latency_ms});
   while (samples_.size() > max_samples_) samples_.pop_front();
 }

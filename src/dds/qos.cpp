@@ -131,6 +131,10 @@ fdds::DataWriterQos status_writer_qos(std::int32_t depth) {
   return qos;
 }
 
+fdds::DataWriterQos diagnostics_writer_qos() {
+  return status_writer_qos(1);
+}
+
 fdds::DataReaderQos status_reader_qos(std::int32_t depth) {
   fdds::DataReaderQos qos = fdds::DATAREADER_QOS_DEFAULT;
   common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::VOLATILE_DURABILITY_QOS,

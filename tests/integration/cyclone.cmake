@@ -26,7 +26,9 @@ elseif(TARGET litamin2d AND TARGET litamin2-sim AND TARGET litamin2-odometry AND
     geometry_msgs/msg/Point geometry_msgs/msg/Quaternion geometry_msgs/msg/Pose
     geometry_msgs/msg/PoseWithCovariance geometry_msgs/msg/Vector3 geometry_msgs/msg/Twist
     geometry_msgs/msg/TwistWithCovariance nav_msgs/msg/Odometry
-    geometry_msgs/msg/Transform geometry_msgs/msg/TransformStamped tf2_msgs/msg/TFMessage)
+    geometry_msgs/msg/Transform geometry_msgs/msg/TransformStamped tf2_msgs/msg/TFMessage
+    diagnostic_msgs/msg/KeyValue diagnostic_msgs/msg/DiagnosticStatus
+    diagnostic_msgs/msg/DiagnosticArray)
 
   set(cyclone_idl_copies "")
   foreach(type ${cyclone_types})
@@ -89,4 +91,18 @@ elseif(TARGET litamin2d AND TARGET litamin2-sim AND TARGET litamin2-odometry AND
       $<TARGET_FILE:cyclone_client> $<TARGET_FILE:cyclone_tf_reader> ${CMAKE_CURRENT_LIST_DIR}/cyclone_loopback.xml
       ${CMAKE_CURRENT_BINARY_DIR}/cyclone_tf)
   set_tests_properties(integration_cyclone_tf PROPERTIES TIMEOUT 600 RUN_SERIAL TRUE)
+
+  # The Prometheus endpoint (/metrics parsed as Prometheus text, /readyz, /healthz, a bind
+  # failure) of both processes, and their status on rt/diagnostics read by Cyclone DDS as a
+  # ROS 2 diagnostics tool would.
+  add_executable(cyclone_diagnostics_reader
+    ${CMAKE_CURRENT_LIST_DIR}/cyclone_diagnostics_reader/main.cpp)
+  target_link_libraries(cyclone_diagnostics_reader PRIVATE litamin2_cyclone_types CLI11::CLI11)
+  add_test(NAME integration_metrics
+    COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/metrics.sh
+      $<TARGET_FILE:litamin2d> $<TARGET_FILE:litamin2-aggregator> $<TARGET_FILE:litamin2-sim>
+      $<TARGET_FILE:cyclone_client> $<TARGET_FILE:cyclone_diagnostics_reader>
+      ${CMAKE_CURRENT_LIST_DIR}/cyclone_loopback.xml ${CMAKE_CURRENT_LIST_DIR}/prometheus_check.py
+      ${CMAKE_CURRENT_BINARY_DIR}/metrics)
+  set_tests_properties(integration_metrics PROPERTIES TIMEOUT 600 RUN_SERIAL TRUE)
 endif()

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `cpack -G DEB` into a scratch folder, then the package is read with dpkg-deb: name, version,
 # Depends computed by dpkg-shlibdeps, binaries, units, drop-ins, /etc/litamin2 as conffiles,
-# executable maintainer scripts, units naming /usr/bin and /etc/litamin2, nothing in /usr/local.
+# executable maintainer scripts, units naming /usr/bin and /etc/litamin2, nothing in /usr/local,
+# a man page per binary (man8 for the daemons, man1 for the tools).
 # Usage: deploy_package.sh SOURCE_DIR BUILD_DIR WORK_DIR VERSION [BINARY...]   (exit 77 = skipped)
 set -uo pipefail
 src=$1; build=$2; work=$3; version=$4; shift 4
@@ -42,6 +43,11 @@ echo "ok   control: Depends: $(field Depends)"
 dpkg-deb -c "$deb" | awk '{print $6}' | sed 's|^\./|/|' > "$work/files.txt"
 has() { grep -qx -- "$1" "$work/files.txt" || fail "not in package: $1"; }
 for b in "${bins[@]}"; do has "/usr/bin/$b"; done
+# Man pages from --help (tools/CMakeLists.txt): section 8 for the daemons, 1 for the rest.
+for b in "${bins[@]}"; do
+  case $b in litamin2d | litamin2-aggregator) has "/usr/share/man/man8/$b.8.gz" ;;
+    *) has "/usr/share/man/man1/$b.1.gz" ;; esac
+done
 for f in "$src"/deploy/systemd/*.service; do has "/usr/lib/systemd/system/$(basename "$f")"; done
 has /usr/lib/sysctl.d/60-litamin2.conf
 has /usr/lib/sysusers.d/litamin2.conf

@@ -141,3 +141,18 @@ TEST(AggregatorConfig, TfAndMapCloudTopics) {
   expect_error("topics: {tf: rt/litamin2/map_summary}", "topics.tf: 'rt/litamin2/map_summary' is");
   expect_error("topics: {map_cloud: rt/tf}", "topics.map_cloud: 'rt/tf' is another topic's");
 }
+
+TEST(AggregatorConfig, MetricsListenAndDiagnosticsTopic) {
+  const AggregatorConfig defaults = aggregator_config_from_yaml(YAML::Node());
+  EXPECT_FALSE(defaults.metrics.enabled());  // off unless asked
+  EXPECT_EQ(defaults.topics.diagnostics, "rt/diagnostics");
+  const AggregatorConfig on = aggregator_config_from_yaml(
+      YAML::Load("metrics: {listen: \"[::1]:9465\"}\ntopics: {diagnostics: ''}"));
+  EXPECT_EQ(on.metrics.listen, "[::1]:9465");
+  EXPECT_TRUE(on.topics.diagnostics.empty());
+  expect_error("metrics: {listen: \"localhost\"}", "metrics.listen");
+  expect_error("metrics: {listen: \"localhost:0\"}", "metrics.listen");
+  expect_error("metrics: {listen: \"localhost:123456\"}", "metrics.listen");
+  expect_error("metrics: {address: x}", "metrics.address");
+  expect_error("topics: {diagnostics: rt/litamin2/map_patches}", "topics.diagnostics");
+}

@@ -314,6 +314,24 @@ outputs: {frame_prefix: false, odom_frame: odom_lidar, base_frame: base_footprin
             std::string::npos);
 }
 
+TEST(DaemonConfig, MetricsListenAndDiagnosticsTopic) {
+  const DaemonConfig defaults = parse("dds: {domain: 3}");
+  EXPECT_FALSE(defaults.metrics.enabled());  // off unless asked
+  EXPECT_EQ(defaults.outputs.diagnostics_topic, "rt/diagnostics");
+  const DaemonConfig on =
+      parse("metrics: {listen: \"127.0.0.1:9464\"}\noutputs: {diagnostics_topic: ''}");
+  EXPECT_EQ(on.metrics.listen, "127.0.0.1:9464");
+  EXPECT_TRUE(on.outputs.diagnostics_topic.empty());
+  for (const char* bad : {"127.0.0.1", "127.0.0.1:0", "127.0.0.1:65536", ":9464"}) {
+    const std::string why = error_of(std::string("metrics: {listen: \"") + bad + "\"}");
+    EXPECT_NE(why.find("metrics.listen"), std::string::npos) << bad << ": " << why;
+  }
+  EXPECT_NE(error_of("metrics: {port: 9464}").find("metrics.port"), std::string::npos);
+  EXPECT_NE(error_of("outputs: {diagnostics_topic: rt/litamin2/status}")
+                .find("outputs.diagnostics_topic"),
+            std::string::npos);
+}
+
 TEST(DaemonConfig, ShardingAndMemberId) {
   const DaemonConfig defaults = parse("discovery: {enabled: true}\n");
   EXPECT_FALSE(defaults.sharding.enabled);

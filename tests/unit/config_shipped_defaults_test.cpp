@@ -89,6 +89,8 @@ TEST(ConfigShippedDefaults, DaemonDdsOnlyConfigBehavesAsTheShippedFile) {
   EXPECT_EQ(shipped.outputs.odom_suffix, minimal.outputs.odom_suffix);
   EXPECT_EQ(shipped.outputs.map_patches_topic, minimal.outputs.map_patches_topic);
   EXPECT_EQ(shipped.outputs.status_topic, minimal.outputs.status_topic);
+  EXPECT_EQ(shipped.outputs.diagnostics_topic, minimal.outputs.diagnostics_topic);
+  EXPECT_EQ(shipped.metrics.listen, minimal.metrics.listen);
   EXPECT_EQ(shipped.outputs.status_period_s, minimal.outputs.status_period_s);
   EXPECT_EQ(shipped.outputs.map_patch_history, minimal.outputs.map_patch_history);
   EXPECT_EQ(shipped.outputs.odom_frame, minimal.outputs.odom_frame);
@@ -111,6 +113,8 @@ TEST(ConfigShippedDefaults, AggregatorDdsOnlyConfigBehavesAsTheShippedFile) {
   EXPECT_EQ(st.map_summary, mt.map_summary);
   EXPECT_EQ(st.map_tiles, mt.map_tiles);
   EXPECT_EQ(st.status, mt.status);
+  EXPECT_EQ(st.diagnostics, mt.diagnostics);
+  EXPECT_EQ(shipped.metrics.listen, minimal.metrics.listen);
   EXPECT_EQ(st.odometry, mt.odometry);
   EXPECT_EQ(st.map_odometry, mt.map_odometry);
   EXPECT_EQ(shipped.store.path, minimal.store.path);

@@ -81,6 +81,26 @@ TEST(StreamStats, WindowForgetsOldResults) {
   EXPECT_EQ(later.latency_p50_ms, 0.0);
 }
 
+TEST(StreamStats, LatencyHistogramKeepsEveryFrameBeyondTheWindow) {
+  StreamStats stats(1s, 4);
+  const Clock::time_point t0 = Clock::now();
+  // 10 frames of 500 ms and 10 of 2 ms; the window (1 s, at most 4 samples) forgets most of
+  // them, the Prometheus histogram none.
+  for (int i = 0; i < 10; ++i) stats.record_result(t0, t0 + 500ms, false, true, 1);
+  for (int i = 0; i < 10; ++i) stats.record_result(t0 + 5s, t0 + 5s + 2ms, false, true, 1);
+  const StatsSnapshot s = stats.snapshot(t0 + 60s);
+  EXPECT_EQ(s.window_samples, 0u);
+  const litamin2::service::Histogram& h = s.latency_seconds;
+  EXPECT_EQ(h.count(), 20u);
+  EXPECT_NEAR(h.sum(), 10 * 0.5 + 10 * 0.002, 1e-9);
+  const std::vector<std::uint64_t> c = h.cumulative_counts();
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const double le = h.upper_bounds()[i];
+    const std::uint64_t expected = (le >= 0.002 ? 10u : 0u) + (le >= 0.5 ? 10u : 0u);
+    EXPECT_EQ(c[i], expected) << "le " << le;
+  }
+}
+
 TEST(StreamStats, SampleCountIsBounded) {
   StreamStats stats(10s, 16);
   const Clock::time_point t0 = Clock::now();

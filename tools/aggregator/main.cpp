@@ -13,6 +13,7 @@
 #include "litamin2/dds/security_files.hpp"
 #include "litamin2/io/io_error.hpp"
 #include "litamin2/mapping/mapper_config.hpp"
+#include "litamin2/metrics/metrics_endpoint.hpp"
 #include "litamin2/service/logging.hpp"
 #include "litamin2/service/service_loop.hpp"
 #include "litamin2/store/store_error.hpp"
@@ -159,15 +160,30 @@ int main(int argc, char** argv) {
   spdlog::info("litamin2-aggregator {} starting: {}", litamin2::version(), describe(config));
 
   service::ServiceLoop service_loop(config.watchdog.enabled);
+  // Before the store and DDS: a port that cannot be bound fails the start; during the
+  // store's recovery /readyz answers 503.
+  std::unique_ptr<metrics::MetricsEndpoint> metrics;
+  try {
+    metrics = std::make_unique<metrics::MetricsEndpoint>(config.metrics);
+  } catch (const std::exception& e) {
+    spdlog::error("cannot start the metrics endpoint: {}", e.what());
+    spdlog::default_logger()->flush();
+    return 1;
+  }
+  if (metrics->enabled())
+    spdlog::info("metrics: http://{}/metrics, /healthz, /readyz", config.metrics.listen);
   int exit_code = 0;
   try {
     service_loop.notifier().status("recovering the store");
     AggregatorNode node(config, progress_printer("recovering"));
+    metrics->refresh([&] { return node.metrics_text(); });
+    metrics->set_ready(true);
     service_loop.notifier().ready();
     service_loop.notifier().status(node.summary());
     service::ServiceLoop::Hooks hooks;
     hooks.poll = [&](service::ServiceLoop::Clock::time_point now) {
       node.poll(now);
+      metrics->turn(now, [&] { return node.metrics_text(); });
       if (!node.failed()) return true;
       spdlog::error("the store failed: exiting so that the service restarts");
       exit_code = 1;
@@ -183,6 +199,7 @@ int main(int argc, char** argv) {
         fmt::format("a batch has been in processing for over {} s: withholding the watchdog",
                     config.watchdog.stall_timeout_s);
     service_loop.run(signals, hooks, kLoopPeriod);
+    metrics->set_ready(false);
     service_loop.notifier().stopping();
     node.shutdown();
   } catch (const store::StoreError& e) {

@@ -232,6 +232,13 @@ namespace {
 
 const char* kHelp =
     "litamin2-bench: time of each LiTAMIN2 stage and of whole frames on KITTI-size scans.\n"
+    "Usage: litamin2-bench [OPTIONS]\n"
+    "\n"
+    "Options:\n"
+    "  -h, --help               print this help and Google Benchmark's options, and exit.\n"
+    "  -V, --version            print the version and exit.\n"
+    "  --benchmark_...          Google Benchmark's options (below), e.g.\n"
+    "                           --benchmark_filter=REGEX, --benchmark_repetitions=N.\n"
     "\n"
     "Environment:\n"
     "  LITAMIN2_BENCH_SEQUENCE  a sequence folder (KITTI layout: velodyne/*.bin, e.g. from\n"
@@ -241,11 +248,9 @@ const char* kHelp =
     "The stage benchmarks read the two real KITTI scans of ../shared/data.\n"
     "Commands, machine and results: docs/benchmarks.md.\n"
     "\n"
-    "  -V, --version            print the version and exit.\n"
     "Exit status: 0 done, 1 the shared scans are missing, 2 usage error.\n"
     "\n"
-    "Google Benchmark's options follow (e.g. --benchmark_filter=REGEX, "
-    "--benchmark_repetitions=N).\n\n";
+    "Google Benchmark's options:\n\n";
 
 }  // namespace
 

@@ -48,6 +48,7 @@ void report(const char* name, std::vector<double> nees) {
 
 int main(int argc, char** argv) {
   CLI::App app{
+      "litamin2-covariance-check: the tracker's relative-pose covariance against ground truth\n"
       "Consistency of the tracker's relative-pose covariance with a sequence's ground "
       "truth; prints the calibrated pose_graph.tracker_covariance_scale"};
   litamin2::tools::init_cli(app, "litamin2-covariance-check");

@@ -19,6 +19,7 @@ using namespace litamin2;
 
 int main(int argc, char** argv) {
   CLI::App app{
+      "litamin2-scan-agreement: how well consecutive scans agree under a path\n"
       "Agreement of consecutive scans under a path: median distance from each scan's points, "
       "moved by the path's motion, to the previous scan's nearest points (no ground truth)"};
   tools::init_cli(app, "litamin2-scan-agreement");

@@ -9,6 +9,7 @@
 #include "litamin2/core/config_error.hpp"
 #include "litamin2/daemon/dds/daemon_node.hpp"
 #include "litamin2/dds/security_files.hpp"
+#include "litamin2/metrics/metrics_endpoint.hpp"
 #include "litamin2/service/heap_tuning.hpp"
 #include "litamin2/service/logging.hpp"
 #include "litamin2/service/service_loop.hpp"
@@ -74,9 +75,22 @@ int main(int argc, char** argv) {
   if (!heap_policy.empty()) spdlog::info("heap policy left as it is: {}", heap_policy);
 
   ServiceLoop service_loop(config.watchdog.enabled);
+  // Before DDS starts: a port that cannot be bound fails the start with nothing published.
+  std::unique_ptr<metrics::MetricsEndpoint> metrics;
+  try {
+    metrics = std::make_unique<metrics::MetricsEndpoint>(config.metrics);
+  } catch (const std::exception& e) {
+    spdlog::error("cannot start the metrics endpoint: {}", e.what());
+    spdlog::default_logger()->flush();
+    return 1;
+  }
+  if (metrics->enabled())
+    spdlog::info("metrics: http://{}/metrics, /healthz, /readyz", config.metrics.listen);
   int exit_code = 0;
   try {
     DaemonNode node(config);
+    metrics->refresh([&] { return node.metrics_text(); });
+    metrics->set_ready(true);
     service_loop.notifier().ready();
     service_loop.notifier().status(node.summary());
     if (service_loop.watchdog().enabled())
@@ -87,6 +101,7 @@ int main(int argc, char** argv) {
     ServiceLoop::Hooks hooks;
     hooks.poll = [&](ServiceLoop::Clock::time_point now) {
       node.poll(now);
+      metrics->turn(now, [&] { return node.metrics_text(now); });
       return true;
     };
     hooks.healthy = [&](ServiceLoop::Clock::time_point now) { return node.healthy(now); };
@@ -99,6 +114,7 @@ int main(int argc, char** argv) {
         fmt::format("a frame has been in processing for over {} s: withholding the watchdog",
                     config.watchdog.stall_timeout_s);
     service_loop.run(signals, hooks, kLoopPeriod);
+    metrics->set_ready(false);
     service_loop.notifier().stopping();
     const DrainResult drained = node.shutdown();
     if (!drained.complete) {

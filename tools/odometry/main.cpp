@@ -256,7 +256,7 @@ int run(const Options& options) {
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "LiTAMIN2 LiDAR odometry over a recorded sequence.\n"
+      "litamin2-odometry: LiTAMIN2 LiDAR odometry over a recorded sequence\n"
       "INPUT is a KITTI odometry sequence folder (velodyne/*.bin, optional calib.txt, times.txt,\n"
       "poses.txt) or a folder of .bin/.pcd scans taken in name order. Writes, into --output:\n"
       "poses_kitti.txt (sensor poses in the frame of the first scan, 3x4 row-major), "

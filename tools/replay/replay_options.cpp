@@ -15,7 +15,8 @@ namespace {}  // namespace
 int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& should_exit) {
   should_exit = true;
   CLI::App app{
-      "litamin2-replay: publishes KITTI-format scan sequences (a folder with velodyne/*.bin and "
+      "litamin2-replay: scan sequences published as PointCloud2 over DDS\n"
+      "Publishes KITTI-format scan sequences (a folder with velodyne/*.bin and "
       "times.txt, or a plain folder of .bin/.pcd scans) as ROS 2 sensor_msgs/PointCloud2 on the "
       "DDS topic rt/<stream>/points, one stream per SEQUENCE_DIR, all streams at once. Header "
       "stamps come from times.txt, frame_id is the stream id.\n\n"

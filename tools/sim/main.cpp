@@ -129,6 +129,7 @@ int main(int argc, char** argv) {
   spdlog::set_pattern("[%H:%M:%S.%e] [%^%l%$] %v");
 
   CLI::App app{
+      "litamin2-sim: LiDAR simulator writing KITTI odometry sequences\n"
       "Ray-casts synthetic LiDAR scans along a trajectory (KITTI ground truth or built-in) in a "
       "procedural world and writes KITTI odometry folders (velodyne/*.bin, poses.txt, calib.txt, "
       "times.txt).\n"

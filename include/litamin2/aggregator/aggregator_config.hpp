@@ -6,6 +6,7 @@
 #include "litamin2/aggregator/full_pass_worker.hpp"
 #include "litamin2/mapping/mapper_config.hpp"
 #include "litamin2/mapping/tile_map.hpp"
+#include "litamin2/service/metrics_config.hpp"
 #include "litamin2/service/security_config.hpp"
 #include "litamin2/service/transport_config.hpp"
 #include "litamin2/service/watchdog_config.hpp"
@@ -25,6 +26,9 @@ struct TopicsConfig {
   std::string map_tiles = "rt/litamin2/map_tiles";
   /// Output: the aggregator's status (diagnostic_msgs/DiagnosticArray).
   std::string status = "rt/litamin2/aggregator/status";
+  /// The same status also here: ROS 2's /diagnostics, with diagnostic_updater's QoS. Empty:
+  /// only on `status`.
+  std::string diagnostics = "rt/diagnostics";
   /// Input: each stream's odometry (nav_msgs/Odometry), a pattern whose one '*' stands for the
   /// stream id; read for every stream seen in the map patches. Empty: no odometry is read and
   /// no map-frame odometry published.
@@ -121,6 +125,8 @@ struct AggregatorConfig {
   FullPassConfig full_pass;
   /// A batch may take longer than a frame: 60 s stall timeout (the shipped file's), not 10.
   service::WatchdogConfig watchdog{true, 60.0};
+  /// The Prometheus endpoint (off unless metrics.listen is set).
+  service::MetricsConfig metrics;
   /// spdlog level: trace, debug, info, warn, error, critical, off.
   std::string log_level = "info";
 };

@@ -14,6 +14,8 @@
 #include "litamin2/aggregator/full_pass_worker.hpp"
 #include "litamin2/aggregator/patch_queue.hpp"
 
+#include "litamin2/service/histogram.hpp"
+
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -41,11 +43,15 @@ struct WorkerStatus {
   std::size_t recovered = 0;
   std::size_t duplicates = 0;
   std::size_t loops = 0;
+  /// Merges of two streams' groups confirmed (mapping::MapperStats::merges).
+  std::size_t merges = 0;
   std::size_t optimizations = 0;
   std::size_t batches = 0;
   double last_store_ms = 0.0;
   double last_mapper_ms = 0.0;
   double last_optimize_ms = 0.0;
+  /// Every local optimisation's wall time since the start, seconds (the Prometheus histogram).
+  service::Histogram optimize_seconds{service::latency_buckets_seconds()};
   std::map<std::string, StreamCounts> streams;
   /// CPU time of the mapping thread by stage, seconds: ingest (store, mapper, map tiles) ...
   IngestCpu ingest_cpu;

@@ -1,8 +1,9 @@
 #pragma once
 /// The sections both processes' configs share: `dds:` (TransportConfig), `security:`
-/// (SecurityConfig), `watchdog:` (WatchdogConfig) and `log_level`.
+/// (SecurityConfig), `watchdog:` (WatchdogConfig), `metrics:` (MetricsConfig) and `log_level`.
 
 #include "litamin2/config/yaml_section.hpp"
+#include "litamin2/service/metrics_config.hpp"
 #include "litamin2/service/security_config.hpp"
 #include "litamin2/service/transport_config.hpp"
 #include "litamin2/service/watchdog_config.hpp"
@@ -27,6 +28,10 @@ SecurityConfig security_config_from_yaml(const YAML::Node& node);
 /// [0.1, max_stall_timeout_s].
 WatchdogConfig watchdog_config_from_yaml(const YAML::Node& node, double max_stall_timeout_s,
                                          const WatchdogConfig& defaults);
+
+/// Reads a `metrics:` section (a null node: off); errors name keys as metrics.<key>. A
+/// non-empty listen must be HOST:PORT with a port in 1..65535 (metrics_config_error).
+MetricsConfig metrics_config_from_yaml(const YAML::Node& node);
 
 /// Reads the `log_level` key of `section` into `level` (one of kLogLevels).
 void read_log_level(config::YamlSection& section, std::string& level);

@@ -4,6 +4,7 @@
 /// YAML by config/daemon_config_yaml.hpp).
 
 #include "litamin2/core/tracker_config.hpp"
+#include "litamin2/service/metrics_config.hpp"
 #include "litamin2/service/security_config.hpp"
 #include "litamin2/service/transport_config.hpp"
 #include "litamin2/service/watchdog_config.hpp"
@@ -50,6 +51,9 @@ struct OutputsConfig {
   std::string odom_suffix = "odom";
   std::string map_patches_topic = "rt/litamin2/map_patches";
   std::string status_topic = "rt/litamin2/status";
+  /// The same status also here: ROS 2's /diagnostics (rqt_robot_monitor, diagnostic_aggregator
+  /// read it), with diagnostic_updater's QoS. Empty: only on status_topic.
+  std::string diagnostics_topic = "rt/diagnostics";
   /// Status (DiagnosticArray) period, seconds.
   double status_period_s = 1.0;
   /// Map patches held per stream for aggregators that start late or restart (transient-local):
@@ -116,6 +120,8 @@ struct DaemonConfig {
   int queue_depth = 4;
   OutputsConfig outputs;
   service::WatchdogConfig watchdog;
+  /// The Prometheus endpoint (off unless metrics.listen is set).
+  service::MetricsConfig metrics;
   /// spdlog level: trace, debug, info, warn, error, critical, off.
   std::string log_level = "info";
   /// Seconds given to queued frames at shutdown before they are dropped.

@@ -3,6 +3,8 @@
 /// and frames/s over a sliding time window. Thread-safe: the listener, the stream's task and
 /// the status publisher update and read it concurrently.
 
+#include "litamin2/service/histogram.hpp"
+
 #include <chrono>
 #include <cstdint>
 #include <deque>
@@ -50,6 +52,9 @@ struct StatsSnapshot {
   /// thread's CPU clock), seconds: with the process's CPU time it separates tracking from the
   /// rest of the daemon's work per frame (transport, conversion, publishing).
   double tracking_cpu_s = 0.0;
+  /// Arrival -> published latency of every processed frame since the start, seconds (for the
+  /// Prometheus histogram; the window's quantiles above are for the status).
+  service::Histogram latency_seconds{service::latency_buckets_seconds()};
 };
 
 class StreamStats {

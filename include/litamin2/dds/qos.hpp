@@ -43,6 +43,9 @@ eprosima::fastdds::dds::DataReaderQos map_patch_ids_reader_qos();
 /// rt/litamin2/status: reliable, volatile, keep-last `depth`.
 eprosima::fastdds::dds::DataWriterQos status_writer_qos(std::int32_t depth = 10);
 eprosima::fastdds::dds::DataReaderQos status_reader_qos(std::int32_t depth = 10);
+/// rt/diagnostics: as ROS 2's diagnostic_updater creates its /diagnostics publisher
+/// (rclcpp::QoS(1): reliable, volatile, keep-last 1).
+eprosima::fastdds::dds::DataWriterQos diagnostics_writer_qos();
 
 /// rt/tf: reliable, volatile, keep-last `depth` (tf2_ros::DynamicBroadcasterQoS: depth 100).
 eprosima::fastdds::dds::DataWriterQos tf_writer_qos(std::int32_t depth = 100);

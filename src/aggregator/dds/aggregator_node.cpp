@@ -2,6 +2,7 @@
 
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "litamin2/aggregator/dds/aggregator_messages.hpp"
+#include "litamin2/aggregator/dds/aggregator_metrics.hpp"
 #include "litamin2/aggregator/dds/map_cloud_message.hpp"
 #include "litamin2/dds/checked_type.hpp"
 #include "litamin2/dds/participant_setup.hpp"
@@ -156,6 +157,12 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
                                                  dds::status_writer_qos());
   if (!poses_writer || !summary_writer || !status_writer_)
     throw std::runtime_error("cannot create output writers");
+  if (!config_.topics.diagnostics.empty()) {
+    diagnostics_writer_ = publisher_->create_datawriter(
+        topic(config_.topics.diagnostics, status_type_), dds::diagnostics_writer_qos());
+    if (!diagnostics_writer_)
+      throw std::runtime_error("cannot create the writer of " + config_.topics.diagnostics);
+  }
   if (!config_.topics.tf.empty() && !config_.topics.odometry.empty()) {
     tf_type_ = dds::register_type(participant_.get(), new tf2_msgs::msg::TFMessagePubSubType());
     tf_writer_ =
@@ -290,8 +297,7 @@ std::string AggregatorNode::summary() const {
                      s.keyframes, s.streams.size(), s.loops, s.duplicates, queue_.size());
 }
 
-void AggregatorNode::publish_status(Clock::time_point now) {
-  const WorkerStatus w = worker_->status();
+IngestCounters AggregatorNode::ingest_counters() const {
   IngestCounters in;
   in.received = listener_.received();
   in.rejected = listener_.rejected();
@@ -303,6 +309,17 @@ void AggregatorNode::publish_status(Clock::time_point now) {
   in.queue_capacity = queue_.capacity();
   in.queue_high_water = queue_.high_water();
   in.store_path = config_.store.path;
+  return in;
+}
+
+std::string AggregatorNode::metrics_text() const {
+  return aggregator_metrics_text(worker_->status(), ingest_counters(), relay_.status(),
+                                 store_size_bytes(config_.store.path));
+}
+
+void AggregatorNode::publish_status(Clock::time_point now) {
+  const WorkerStatus w = worker_->status();
+  const IngestCounters in = ingest_counters();
   std::uint8_t level = 0;
   std::string message = "ok";
   if (!w.error.empty()) {
@@ -322,6 +339,7 @@ void AggregatorNode::publish_status(Clock::time_point now) {
   reported_lost_ = in.samples_lost;
   auto msg = make_aggregator_status(w, in, relay_.status(), level, message, dds::wall_clock_now());
   status_writer_->write(&msg);
+  if (diagnostics_writer_) diagnostics_writer_->write(&msg);
 }
 
 void AggregatorNode::shutdown() {

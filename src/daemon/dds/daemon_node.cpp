@@ -1,6 +1,7 @@
 #include "litamin2/daemon/dds/daemon_node.hpp"
 
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
+#include "litamin2/daemon/dds/daemon_metrics.hpp"
 #include "litamin2/daemon/dds/dds_stream_sink.hpp"
 #include "litamin2/daemon/dds/points_listener.hpp"
 #include "litamin2/daemon/dds/status_message.hpp"
@@ -107,6 +108,16 @@ DaemonNode::DaemonNode(DaemonConfig config) : config_(std::move(config)) {
   if (!patches_topic_ || !status_topic) throw std::runtime_error("cannot create output topics");
   status_writer_ = publisher_->create_datawriter(status_topic, dds::status_writer_qos());
   if (!status_writer_) throw std::runtime_error("cannot create output writers");
+  if (!config_.outputs.diagnostics_topic.empty()) {
+    auto* diagnostics_topic = participant_->create_topic(
+        config_.outputs.diagnostics_topic, status_type_.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
+    if (!diagnostics_topic)
+      throw std::runtime_error("cannot create topic " + config_.outputs.diagnostics_topic);
+    diagnostics_writer_ =
+        publisher_->create_datawriter(diagnostics_topic, dds::diagnostics_writer_qos());
+    if (!diagnostics_writer_)
+      throw std::runtime_error("cannot create the writer of " + config_.outputs.diagnostics_topic);
+  }
   if (config_.outputs.publish_tf) {
     tf_type_ = dds::register_type(participant_.get(), new tf2_msgs::msg::TFMessagePubSubType());
     auto* tf_topic = participant_->create_topic(config_.outputs.tf_topic, tf_type_.get_type_name(),
@@ -461,6 +472,11 @@ void DaemonNode::publish_status(Clock::time_point now) {
   }
   auto msg = make_status_message(statuses, dds::wall_clock_now());
   status_writer_->write(&msg);
+  if (diagnostics_writer_) diagnostics_writer_->write(&msg);
+}
+
+std::string DaemonNode::metrics_text(Clock::time_point now) const {
+  return daemon_metrics_text(status(now));
 }
 
 std::string DaemonNode::summary(Clock::time_point now) const {

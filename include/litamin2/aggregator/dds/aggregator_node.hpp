@@ -3,7 +3,8 @@
 /// transient-local, keep-all, every partition) whose listener only checks that each patch's
 /// stream is a partition of its writer (dds/stream_partition.hpp), converts and enqueues; writers
 /// of the corrected keyframe poses (one instance per stream, reliable, transient-local), of the map
-/// summary (reliable, transient-local) and of the status (DiagnosticArray); the mapping thread
+/// summary (reliable, transient-local) and of the status (DiagnosticArray, also on
+/// topics.diagnostics: rt/diagnostics); the mapping thread
 /// in between. For every stream seen in the patches (or recovered from the store), a reader of
 /// its odometry (reliable, keep-last, as litamin2d writes it) and a writer of its current pose
 /// in the map frame (map_odometry.hpp), created by the main loop; a MapOdometryRelay between
@@ -12,6 +13,7 @@
 
 #include "litamin2/aggregator/aggregator_config.hpp"
 #include "litamin2/aggregator/aggregator_core.hpp"
+#include "litamin2/aggregator/dds/aggregator_messages.hpp"
 #include "litamin2/aggregator/dds/map_odometry_relay.hpp"
 #include "litamin2/aggregator/dds/odometry_listener.hpp"
 #include "litamin2/aggregator/dds/patch_listener.hpp"
@@ -65,6 +67,8 @@ class AggregatorNode {
   WorkerStatus status() const;
   /// One line for logs and sd_notify STATUS=.
   std::string summary() const;
+  /// The Prometheus /metrics text of the status (aggregator_metrics.hpp).
+  std::string metrics_text() const;
 
  private:
   class Sink;
@@ -75,6 +79,8 @@ class AggregatorNode {
     bool changed = false;
   };
   void publish_status(Clock::time_point now);
+  /// The listener's and the queue's counters, as the status reports them.
+  IngestCounters ingest_counters() const;
   /// Sends the map's points if tiles changed since the last time.
   void publish_map_cloud(Clock::time_point now);
   /// Odometry reader and map-frame writer for streams that have none yet.
@@ -103,6 +109,8 @@ class AggregatorNode {
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
   eprosima::fastdds::dds::DataWriter* status_writer_ = nullptr;
+  /// topics.diagnostics (null when empty): the status again, for ROS 2's /diagnostics.
+  eprosima::fastdds::dds::DataWriter* diagnostics_writer_ = nullptr;
   /// topics.tf (null when empty or without odometry): map -> odom per stream.
   eprosima::fastdds::dds::DataWriter* tf_writer_ = nullptr;
   /// topics.map_cloud (null when empty): the map's points, filled by the mapping thread's

@@ -2,16 +2,17 @@
 /// The daemon's DDS side: one participant; per stream a reader of rt/<stream>/points (created
 /// when discovery reports a writer, reliable if the writer is), a tracker on the shared
 /// StreamScheduler, a writer of rt/<stream>/odom and a writer of the map patches in the
-/// partition of the stream id (dds/stream_partition.hpp); one writer each for status, rt/tf (every
-/// stream's odom -> base per pose) and rt/tf_static (every stream's base -> sensor,
-/// transient-local). Streams come from the config and, with discovery enabled, from every
-/// PointCloud2 topic matching the pattern. The main loop calls poll(); shutdown() stops input,
-/// drains the queues within the configured time and publishes a final status. With sharding
-/// (docs/deploy.md, "Several daemon hosts") the participant announces the member id in its
-/// USER_DATA, the node follows the live daemons (Membership) and tracks only the discovered streams
-/// that rendezvous hashing gives it; it reads every known stream's rt/<stream>/odom and the map
-/// patches' keyframe ids (HandoverListener, every partition) so that a stream moving here continues
-/// its odometry frame and keyframe ids (stream_handover.hpp).
+/// partition of the stream id (dds/stream_partition.hpp); one writer each for status (also on
+/// rt/diagnostics unless outputs.diagnostics_topic is empty), rt/tf (every stream's odom -> base
+/// per pose) and rt/tf_static (every stream's base -> sensor, transient-local). Streams come from
+/// the config and, with discovery enabled, from every PointCloud2 topic matching the pattern. The
+/// main loop calls poll(); shutdown() stops input, drains the queues within the configured time and
+/// publishes a final status. With sharding (docs/deploy.md, "Several daemon hosts") the participant
+/// announces the member id in its USER_DATA, the node follows the live daemons (Membership) and
+/// tracks only the discovered streams that rendezvous hashing gives it; it reads every known
+/// stream's rt/<stream>/odom and the map patches' keyframe ids (HandoverListener, every partition)
+/// so that a stream moving here continues its odometry frame and keyframe ids
+/// (stream_handover.hpp).
 
 #include "litamin2/daemon/daemon_config.hpp"
 #include "litamin2/daemon/dds/handover_listener.hpp"
@@ -73,6 +74,8 @@ class DaemonNode {
   std::vector<StreamStatus> status(Clock::time_point now = Clock::now()) const;
   /// One line for logs and sd_notify STATUS=.
   std::string summary(Clock::time_point now = Clock::now()) const;
+  /// The Prometheus /metrics text of status(now) (daemon_metrics.hpp).
+  std::string metrics_text(Clock::time_point now = Clock::now()) const;
 
  private:
   struct Stream;
@@ -104,6 +107,8 @@ class DaemonNode {
   /// Map patches: each stream has its publisher (partition = stream id) and writer.
   eprosima::fastdds::dds::Topic* patches_topic_ = nullptr;
   eprosima::fastdds::dds::DataWriter* status_writer_ = nullptr;
+  /// outputs.diagnostics_topic (null when empty): the status again, for ROS 2's /diagnostics.
+  eprosima::fastdds::dds::DataWriter* diagnostics_writer_ = nullptr;
   /// rt/tf and rt/tf_static (outputs.publish_tf; null without).
   eprosima::fastdds::dds::TypeSupport tf_type_;
   eprosima::fastdds::dds::DataWriter* tf_writer_ = nullptr;
