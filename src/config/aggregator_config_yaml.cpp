@@ -21,6 +21,7 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
     YamlSection limits(root.child("limits"), "limits");
     limits.read_range("max_distributions_per_patch", config.limits.max_distributions_per_patch, 1,
                       10'000'000);
+    limits.read("fixed_patch_payloads", config.limits.fixed_patch_payloads);
     limits.reject_unknown();
   }
 

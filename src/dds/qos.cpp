@@ -82,11 +82,15 @@ fdds::DataWriterQos map_patches_writer_qos(std::int32_t history_per_stream) {
   return qos;
 }
 
-fdds::DataReaderQos map_patches_reader_qos() {
+fdds::DataReaderQos map_patches_reader_qos(bool fixed_payloads) {
   fdds::DataReaderQos qos = fdds::DATAREADER_QOS_DEFAULT;
   common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::TRANSIENT_LOCAL_DURABILITY_QOS,
          fdds::KEEP_ALL_HISTORY_QOS, 1);
   unlimited(qos.resource_limits());
+  if (fixed_payloads) {
+    qos.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_MEMORY_MODE;
+    qos.resource_limits().allocated_samples = 1;
+  }
   return qos;
 }
 

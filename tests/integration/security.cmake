@@ -9,6 +9,12 @@
 #    one without permission for a topic is refused; the loopback capture holds no plaintext of a
 #    marker stream id; a tampered, unsigned, expired or mismatched file stops a process at
 #    start naming it.
+#  - integration_stream_binding: map-patch stream ids bound to the writer's partition, with
+#    and without DDS-Security (a daemon identity cannot write another daemon's partition; a
+#    patch naming a stream outside its writer's partition is rejected and counted).
+#  - integration_patch_payload_bound: a 32 MB patch against a 1 MB payload limit: reassembled
+#    and rejected (peak RSS + the sample's size) by default, dropped by Fast DDS before any allocation with
+#    limits.fixed_patch_payloads.
 if(TARGET litamin2d AND TARGET litamin2-aggregator)
   add_executable(raw_cdr_writer ${CMAKE_CURRENT_LIST_DIR}/raw_cdr_writer/main.cpp)
   target_include_directories(raw_cdr_writer PRIVATE ${CMAKE_SOURCE_DIR}/tests)
@@ -27,5 +33,13 @@ if(TARGET litamin2d AND TARGET litamin2-aggregator)
       COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/security.sh ${CMAKE_BINARY_DIR}
         ${CMAKE_CURRENT_BINARY_DIR}/security ${CMAKE_SOURCE_DIR})
     set_tests_properties(integration_security PROPERTIES TIMEOUT 600 RUN_SERIAL TRUE)
+    add_test(NAME integration_stream_binding
+      COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/stream_binding.sh ${CMAKE_BINARY_DIR}
+        ${CMAKE_CURRENT_BINARY_DIR}/stream_binding ${CMAKE_SOURCE_DIR})
+    set_tests_properties(integration_stream_binding PROPERTIES TIMEOUT 600 RUN_SERIAL TRUE)
+    add_test(NAME integration_patch_payload_bound
+      COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/patch_payload_bound.sh ${CMAKE_BINARY_DIR}
+        ${CMAKE_CURRENT_BINARY_DIR}/patch_payload_bound ${CMAKE_SOURCE_DIR})
+    set_tests_properties(integration_patch_payload_bound PROPERTIES TIMEOUT 300 RUN_SERIAL TRUE)
   endif()
 endif()

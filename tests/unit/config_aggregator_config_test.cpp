@@ -92,6 +92,10 @@ TEST(AggregatorConfig, LimitsAndSecurity) {
                 .limits.max_distributions_per_patch,
             7);
   expect_error("limits: {max_distributions_per_patch: 0}", "limits.max_distributions_per_patch");
+  EXPECT_FALSE(aggregator_config_from_yaml(YAML::Node()).limits.fixed_patch_payloads);
+  EXPECT_TRUE(aggregator_config_from_yaml(YAML::Load("limits: {fixed_patch_payloads: true}"))
+                  .limits.fixed_patch_payloads);
+  expect_error("limits: {fixed_patch_payloads: 3}", "limits.fixed_patch_payloads");
   expect_error("security: {enabled: true}", "security.identity_ca: required");
 }
 

@@ -101,6 +101,13 @@ struct LimitsConfig {
   /// A map patch with more distributions is rejected (too_many_distributions) before any is
   /// converted; its serialised payload may be at most 40 bytes a distribution plus 1 MiB.
   int max_distributions_per_patch = 200'000;
+  /// The map patch reader's samples have fixed buffers of that payload limit (Fast DDS's
+  /// PREALLOCATED history memory): a sample announced larger is dropped by Fast DDS before it
+  /// allocates or reassembles anything (without: a writer announcing a 2 GB fragmented sample
+  /// makes the reader allocate 2 GB before any check). Costs the whole limit per sample held
+  /// (9.0 MB with the default max_distributions_per_patch, whatever the patch's size), so
+  /// lower max_distributions_per_patch with it. Off by default. docs/security.md.
+  bool fixed_patch_payloads = false;
 };
 
 struct AggregatorConfig {

@@ -31,7 +31,11 @@ eprosima::fastdds::dds::DataReaderQos odom_reader_qos(std::int32_t depth = 100);
 /// have acknowledged its oldest patch, which is then dropped: live readers that keep up lose
 /// nothing and memory stays bounded.
 eprosima::fastdds::dds::DataWriterQos map_patches_writer_qos(std::int32_t history_per_stream);
-eprosima::fastdds::dds::DataReaderQos map_patches_reader_qos();
+/// The reader of the map patches; `fixed_payloads`: PREALLOCATED history memory, so that every
+/// sample has a buffer of the type's m_typeSize (+3) and Fast DDS 2.9 drops a sample announced
+/// larger before it reserves or reassembles it (ReaderHistory::can_change_be_added_nts), one
+/// buffer allocated at start (allocated_samples 1), more on demand.
+eprosima::fastdds::dds::DataReaderQos map_patches_reader_qos(bool fixed_payloads = false);
 /// rt/litamin2/map_patches read by a daemon only for the latest keyframe id of each stream
 /// (sharding's handover): reliable, volatile (no history replayed at match), keep-last 1 per
 /// stream instance.

@@ -7,6 +7,7 @@
 #include "litamin2/dds/checked_type.hpp"
 #include "litamin2/dds/participant_setup.hpp"
 #include "litamin2/dds/qos.hpp"
+#include "litamin2/dds/stream_partition.hpp"
 #include "litamin2/dds/time_conversion.hpp"
 #include "litamin2/dds/transform_conversion.hpp"
 #include "litamin2/msg/KeyframePosesPubSubTypes.h"
@@ -96,7 +97,8 @@ class AggregatorNode::Sink : public AggregatorSink {
 AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Progress& progress)
     : config_(std::move(config)),
       queue_(static_cast<std::size_t>(config_.ingest.queue_capacity)),
-      listener_(queue_, patch_options(config_)) {
+      writer_partitions_(config_.topics.map_patches),
+      listener_(queue_, patch_options(config_), &writer_partitions_) {
   // KeyframePoses is keyed by stream only: chunks of a stream would replace each other.
   if (config_.publish.poses_chunk_keyframes != 0)
     throw std::invalid_argument(
@@ -116,12 +118,16 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
 
   std::string error;
   participant_ = dds::create_participant(
-      dds::participant_config(config_.dds, config_.security, "litamin2-aggregator"), &error);
+      dds::participant_config(config_.dds, config_.security, "litamin2-aggregator"), &error,
+      &writer_partitions_, fdds::StatusMask::none());
   if (!participant_) throw std::runtime_error("cannot create the DDS participant: " + error);
   // Received patches and odometry are deserialised by CheckedTypes: malformed CDR is counted,
   // not fatal, and a patch's payload is bounded by limits.max_distributions_per_patch.
-  checked_patch_type_ = new dds::CheckedType<litamin2::msg::MapPatchPubSubType>(
-      patch_payload_limit(config_.limits.max_distributions_per_patch));
+  const std::uint32_t patch_limit = patch_payload_limit(config_.limits.max_distributions_per_patch);
+  checked_patch_type_ = new dds::CheckedType<litamin2::msg::MapPatchPubSubType>(patch_limit);
+  // limits.fixed_patch_payloads: the reader's history buffers are of this size, and Fast DDS
+  // drops a larger sample before reassembling it (dds::map_patches_reader_qos).
+  if (config_.limits.fixed_patch_payloads) checked_patch_type_->m_typeSize = patch_limit;
   patch_type_ = dds::register_type(participant_.get(), checked_patch_type_);
   poses_type_ =
       dds::register_type(participant_.get(), new litamin2::msg::KeyframePosesPubSubType());
@@ -133,7 +139,9 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
 
   subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
   publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
-  if (!subscriber_ || !publisher_) throw std::runtime_error("cannot create publisher/subscriber");
+  patch_subscriber_ = participant_->create_subscriber(dds::every_stream_subscriber_qos());
+  if (!subscriber_ || !publisher_ || !patch_subscriber_)
+    throw std::runtime_error("cannot create publisher/subscriber");
   auto topic = [&](const std::string& name, const fdds::TypeSupport& type) {
     fdds::Topic* t =
         participant_->create_topic(name, type.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
@@ -177,10 +185,10 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
   worker_->start();
   subscribe_odometry(worker_->status());
 
-  reader_ = subscriber_->create_datareader(patches, dds::map_patches_reader_qos(), &listener_,
-                                           fdds::StatusMask::data_available()
-                                               << fdds::StatusMask::subscription_matched()
-                                               << fdds::StatusMask::sample_lost());
+  reader_ = patch_subscriber_->create_datareader(
+      patches, dds::map_patches_reader_qos(config_.limits.fixed_patch_payloads), &listener_,
+      fdds::StatusMask::data_available()
+          << fdds::StatusMask::subscription_matched() << fdds::StatusMask::sample_lost());
   if (!reader_) throw std::runtime_error("cannot create the map patch reader");
   next_status_ = Clock::now();
   spdlog::info("DDS participant up: domain {} ({}), profile {}, reading {}, publishing {} and {}",
@@ -340,7 +348,7 @@ void AggregatorNode::shutdown() {
   if (reader_) {
     // The worker still runs, so a listener waiting on a full queue gets through.
     reader_->set_listener(nullptr);
-    subscriber_->delete_datareader(reader_);
+    patch_subscriber_->delete_datareader(reader_);
     reader_ = nullptr;
   }
   for (auto& [stream, o] : odometry_) {

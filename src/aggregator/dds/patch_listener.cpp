@@ -2,8 +2,14 @@
 
 #include "litamin2/core/stopwatch.hpp"
 #include "litamin2/dds/checked_type.hpp"
+#include "litamin2/dds/stream_partition.hpp"
 #include "litamin2/msg/MapPatch.h"
 
+#include <algorithm>
+#include <utility>
+#include <vector>
+
+#include <spdlog/fmt/ranges.h>
 #include <spdlog/spdlog.h>
 #include <fastdds/dds/subscriber/DataReader.hpp>
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
@@ -23,6 +29,19 @@ std::uint64_t ns(double seconds) {
 void PatchListener::on_data_available(fdds::DataReader* reader) {
   litamin2::msg::MapPatch msg;
   fdds::SampleInfo info;
+  // Fast DDS takes the available samples instance by instance (by key hash), not in the order
+  // they were written; every stream has its own writer (dds/stream_partition.hpp), so patches of
+  // streams starting together come in an arbitrary order. They are queued in their writers'
+  // source-timestamp order, up to kOrderWindow at a time (the queue's back-pressure holds).
+  std::vector<std::pair<eprosima::fastrtps::rtps::Time_t, Keyframe>> taken_patches;
+  auto flush = [&] {
+    std::stable_sort(taken_patches.begin(), taken_patches.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (auto& [stamp, keyframe] : taken_patches)
+      if (!queue_.push(std::move(keyframe))) return false;  // shutting down
+    taken_patches.clear();
+    return true;
+  };
   double t = thread_cpu_seconds();
   // The reader's type is a dds::CheckedType: Fast DDS drops (inside take_next_sample) a sample
   // it could not deserialise; count those.
@@ -41,6 +60,7 @@ void PatchListener::on_data_available(fdds::DataReader* reader) {
     t = taken_at;
     if (!info.valid_data) continue;
     ++received_;
+    if (!bound(msg.stream_id(), info.publication_handle)) continue;
     dds::PatchConversion patch = dds::from_map_patch(msg, options_);
     const double converted_at = thread_cpu_seconds();
     convert_cpu_ns_ += ns(converted_at - t);
@@ -49,8 +69,28 @@ void PatchListener::on_data_available(fdds::DataReader* reader) {
       reject(dds::to_string(patch.error), 1, patch.message);
       continue;
     }
-    if (!queue_.push(std::move(patch.keyframe))) return;  // shutting down
+    taken_patches.emplace_back(info.source_timestamp, std::move(patch.keyframe));
+    if (taken_patches.size() >= kOrderWindow && !flush()) return;
   }
+  flush();
+}
+
+bool PatchListener::bound(const std::string& stream_id,
+                          const eprosima::fastrtps::rtps::InstanceHandle_t& writer) {
+  if (!writers_partitions_) return true;
+  const std::optional<std::vector<std::string>> partitions = writers_partitions_->find(writer);
+  if (!partitions) {
+    reject(dds::kStreamNotBound, 1,
+           fmt::format("stream {}: its writer is unknown to discovery", stream_id));
+    return false;
+  }
+  if (!dds::stream_bound(stream_id, *partitions)) {
+    reject(dds::kStreamNotBound, 1,
+           fmt::format("stream {} written by a writer in partition(s) [{}]", stream_id,
+                       fmt::join(*partitions, ", ")));
+    return false;
+  }
+  return true;
 }
 
 void PatchListener::reject(const char* reason, std::uint64_t count, const std::string& message) {

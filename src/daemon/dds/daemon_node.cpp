@@ -10,6 +10,7 @@
 #include "litamin2/dds/checked_type.hpp"
 #include "litamin2/dds/participant_setup.hpp"
 #include "litamin2/dds/qos.hpp"
+#include "litamin2/dds/stream_partition.hpp"
 #include "litamin2/dds/time_conversion.hpp"
 #include "litamin2/dds/transform_conversion.hpp"
 #include "litamin2/msg/MapPatchPubSubTypes.h"
@@ -38,6 +39,9 @@ struct DaemonNode::Stream {
   StreamStats stats;
   fdds::Topic* points_topic = nullptr;
   fdds::DataWriter* odom_writer = nullptr;
+  /// The stream's map patches: a publisher whose partition is the stream id, and its writer.
+  fdds::Publisher* patch_publisher = nullptr;
+  fdds::DataWriter* patch_writer = nullptr;
   std::unique_ptr<DdsStreamSink> sink;
   /// Replaced when a stream moves back here (sharding): guarded against the worker running a
   /// frame.
@@ -97,16 +101,13 @@ DaemonNode::DaemonNode(DaemonConfig config) : config_(std::move(config)) {
   publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
   if (!subscriber_ || !publisher_) throw std::runtime_error("cannot create publisher/subscriber");
 
-  auto* patches_topic = participant_->create_topic(
+  patches_topic_ = participant_->create_topic(
       config_.outputs.map_patches_topic, map_patch_type_.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
   auto* status_topic = participant_->create_topic(
       config_.outputs.status_topic, status_type_.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
-  if (!patches_topic || !status_topic) throw std::runtime_error("cannot create output topics");
-  map_patch_writer_ = publisher_->create_datawriter(
-      patches_topic, dds::map_patches_writer_qos(config_.outputs.map_patch_history));
+  if (!patches_topic_ || !status_topic) throw std::runtime_error("cannot create output topics");
   status_writer_ = publisher_->create_datawriter(status_topic, dds::status_writer_qos());
-  if (!map_patch_writer_ || !status_writer_)
-    throw std::runtime_error("cannot create output writers");
+  if (!status_writer_) throw std::runtime_error("cannot create output writers");
   if (!config_.outputs.diagnostics_topic.empty()) {
     auto* diagnostics_topic = participant_->create_topic(
         config_.outputs.diagnostics_topic, status_type_.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
@@ -132,9 +133,12 @@ DaemonNode::DaemonNode(DaemonConfig config) : config_(std::move(config)) {
   for (const StreamConfig& stream : config_.streams) add_stream(stream);
   if (membership_) {
     handover_.set_map_patches_topic(config_.outputs.map_patches_topic);
-    patch_ids_reader_ =
-        subscriber_->create_datareader(patches_topic, dds::map_patch_ids_reader_qos(), &handover_,
-                                       fdds::StatusMask::data_available());
+    // The patches are in one partition per stream: read them all.
+    patch_ids_subscriber_ = participant_->create_subscriber(dds::every_stream_subscriber_qos());
+    patch_ids_reader_ = patch_ids_subscriber_ ? patch_ids_subscriber_->create_datareader(
+                                                    patches_topic_, dds::map_patch_ids_reader_qos(),
+                                                    &handover_, fdds::StatusMask::data_available())
+                                              : nullptr;
     if (!patch_ids_reader_) throw std::runtime_error("cannot create the map patch id reader");
     claim_after_ =
         Clock::now() + std::chrono::duration_cast<Clock::duration>(
@@ -168,8 +172,23 @@ DaemonNode::Stream& DaemonNode::add_stream(StreamConfig config, std::optional<Ha
     throw std::runtime_error("stream " + s.config.id + ": cannot create its topics");
   s.odom_writer = publisher_->create_datawriter(odom_topic, dds::odom_writer_qos());
   if (!s.odom_writer) throw std::runtime_error("stream " + s.config.id + ": no odom writer");
+  // The stream's patches in the partition of its id (dds/stream_partition.hpp): with
+  // DDS-Security, Fast DDS refuses the writer unless the permissions grant the partition.
+  s.patch_publisher = participant_->create_publisher(dds::stream_publisher_qos(s.config.id));
+  s.patch_writer =
+      s.patch_publisher
+          ? s.patch_publisher->create_datawriter(
+                patches_topic_, dds::map_patches_writer_qos(config_.outputs.map_patch_history))
+          : nullptr;
+  if (!s.patch_writer) {
+    if (s.patch_publisher) participant_->delete_publisher(s.patch_publisher);
+    publisher_->delete_datawriter(s.odom_writer);
+    throw std::runtime_error("stream " + s.config.id + ": cannot create its writer of " +
+                             config_.outputs.map_patches_topic + " in partition " + s.config.id +
+                             " (refused by the permissions?)");
+  }
   const StreamFrames frames = stream_frames(config_.outputs, s.config);
-  s.sink = std::make_unique<DdsStreamSink>(s.odom_writer, map_patch_writer_, tf_writer_, frames);
+  s.sink = std::make_unique<DdsStreamSink>(s.odom_writer, s.patch_writer, tf_writer_, frames);
   if (tf_static_writer_) {
     // One transient-local message holds every stream's base -> sensor (keep-last 1, as ROS 2's
     // static broadcaster): a new stream republishes the whole set.

@@ -16,6 +16,7 @@
 #include "litamin2/dds/map_patch_conversion.hpp"
 #include "litamin2/dds/participant_factory.hpp"
 #include "litamin2/dds/qos.hpp"
+#include "litamin2/dds/stream_partition.hpp"
 #include "litamin2/dds/time_conversion.hpp"
 #include "litamin2/io/kitti_sequence.hpp"
 #include "litamin2/msg/KeyframePosesPubSubTypes.h"
@@ -36,7 +37,9 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <limits>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <random>
 #include <thread>
@@ -237,17 +240,41 @@ int main(int argc, char** argv) {
   type.register_type(participant.get());
   auto* topic = participant->create_topic("rt/litamin2/map_patches", type.get_type_name(),
                                           fdds::TOPIC_QOS_DEFAULT);
-  auto* publisher = participant->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
-  MatchListener match;
-  // Holds every patch it sends, as the load tests count them all at the aggregator.
-  auto* writer = publisher->create_datawriter(topic, litamin2::dds::map_patches_writer_qos(100'000),
-                                              &match, fdds::StatusMask::publication_matched());
-  if (!writer) {
-    std::fprintf(stderr, "probe: no writer\n");
-    return 1;
+  // One writer per stream, in the partition of the stream id, as litamin2d writes them
+  // (dds/stream_partition.hpp: the aggregator refuses a patch outside its writer's partition).
+  std::vector<std::string> ids = streams;
+  if (synthetic_n > 0) {
+    ids.clear();
+    for (int s = 0; s < streams_count; ++s) {
+      char id[16];
+      std::snprintf(id, sizeof id, "s%03d", s);
+      ids.push_back(id);
+    }
   }
+  std::map<std::string, fdds::DataWriter*> writers;
+  std::vector<std::unique_ptr<MatchListener>> matches;
+  for (const std::string& id : ids) {
+    if (writers.count(id)) continue;
+    auto* publisher = participant->create_publisher(litamin2::dds::stream_publisher_qos(id));
+    matches.push_back(std::make_unique<MatchListener>());
+    // Holds every patch it sends, as the load tests count them all at the aggregator.
+    auto* w = publisher ? publisher->create_datawriter(
+                              topic, litamin2::dds::map_patches_writer_qos(100'000),
+                              matches.back().get(), fdds::StatusMask::publication_matched())
+                        : nullptr;
+    if (!w) {
+      std::fprintf(stderr, "probe: no writer for stream %s\n", id.c_str());
+      return 1;
+    }
+    writers[id] = w;
+  }
+  auto matched = [&] {
+    int least = std::numeric_limits<int>::max();
+    for (const auto& m : matches) least = std::min(least, m->matched.load());
+    return matches.empty() ? 0 : least;
+  };
   const auto wait_deadline = Clock::now() + std::chrono::duration<double>(wait_reader);
-  while (match.matched == 0 && Clock::now() < wait_deadline)
+  while (matched() == 0 && Clock::now() < wait_deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
 
   std::size_t published = 0;
@@ -288,7 +315,7 @@ int main(int argc, char** argv) {
         msg.stamp(litamin2::dds::to_time(
             litamin2::Stamp{kEpochNs + static_cast<std::int64_t>(k * period * 1e9)}));
         if (!with_scene) msg.pose().position().x(static_cast<double>(k));
-        if (writer->write(&msg)) ++published;
+        if (writers.at(msg.stream_id())->write(&msg)) ++published;
       }
     }
   } else {
@@ -315,16 +342,16 @@ int main(int argc, char** argv) {
       Keyframe kf = keyframes[order[k].second];
       kf.key.stream = order[k].first;
       litamin2::msg::MapPatch msg = litamin2::dds::to_map_patch(kf, kf.key.stream + "/odom");
-      if (writer->write(&msg)) ++published;
+      if (writers.at(kf.key.stream)->write(&msg)) ++published;
     }
     std::printf("keyframes %zu, published %zu patch(es)\n", keyframes.size(), published);
   }
   std::fflush(stdout);
   // Reliable delivery of everything written before leaving (or lingering).
-  writer->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(30, 0));
+  for (auto& [id, w] : writers) w->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(30, 0));
   if (linger > 0) std::this_thread::sleep_for(std::chrono::duration<double>(linger));
   std::fprintf(stderr, "probe: published %zu patch(es), %d reader(s) matched\n", published,
-               match.matched.load());
+               matched());
   participant.reset();
   return 0;
 }

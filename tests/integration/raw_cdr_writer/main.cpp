@@ -7,6 +7,9 @@
 //                  truncated      the payload cut in the middle of its last sequence
 //                  length_beyond  the length of the last sequence (data / distributions) set to
 //                                 0x7fffffff, far beyond the payload
+// --distributions N makes a patch of N distributions (40 bytes each on the wire).
+// --partition P (repeatable) sets the publisher's partitions; a patch's default is its --stream
+// (as litamin2d publishes, dds/stream_partition.hpp), the other types' the default partition.
 // Waits for a reader to match, writes --count samples (reliable, keep-all), waits until they
 // are acknowledged and exits 0; exit 1 when no reader matched within --timeout.
 
@@ -95,6 +98,8 @@ int main(int argc, char** argv) {
   std::string type = "points", topic, stream = "raw_stream", malformation = "bad_bool";
   litamin2::testing::ProbeParticipantOptions dds_options;
   int count = 5;
+  int distributions = 100;
+  std::vector<std::string> partitions;
   double timeout_s = 30.0;
   app.add_option("--type", type, "points | patch | odom")->required();
   app.add_option("--topic", topic,
@@ -103,6 +108,8 @@ int main(int argc, char** argv) {
   app.add_option("--stream", stream);
   app.add_option("--malformation", malformation, "valid | bad_bool | truncated | length_beyond");
   app.add_option("--count", count);
+  app.add_option("--distributions", distributions, "a patch's distributions (its size)");
+  app.add_option("--partition", partitions, "the publisher's partitions");
   dds_options.add_to(app);
   app.add_option("--timeout", timeout_s);
   CLI11_PARSE(app, argc, argv);
@@ -126,7 +133,7 @@ int main(int argc, char** argv) {
     kf.stamp = Stamp::from_seconds(100.0);
     kf.covariance = Matrix6d::Identity() * 1e-4;
     kf.voxel_size = 1.0;
-    for (int i = 0; i < 100; ++i) {
+    for (int i = 0; i < distributions; ++i) {
       Distribution d;
       d.mean = Eigen::Vector3d(i, 0.5 * i, 1.0);
       d.cov = Eigen::Matrix3d::Identity() * 0.1;
@@ -179,14 +186,20 @@ int main(int argc, char** argv) {
   fdds::TypeSupport raw(new RawType(type_name, type == "patch"));
   raw.register_type(participant.get());
   auto* t = participant->create_topic(topic, type_name, fdds::TOPIC_QOS_DEFAULT);
-  auto* publisher = participant->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
+  if (partitions.empty() && type == "patch") partitions.push_back(stream);
+  fdds::PublisherQos publisher_qos = fdds::PUBLISHER_QOS_DEFAULT;
+  for (const std::string& p : partitions) publisher_qos.partition().push_back(p.c_str());
+  auto* publisher = participant->create_publisher(publisher_qos);
   // The QoS of the topic's real writers, so that their readers match.
   fdds::DataWriterQos qos = type == "patch"  ? litamin2::dds::map_patches_writer_qos(count)
                             : type == "odom" ? litamin2::dds::odom_writer_qos()
                                              : litamin2::dds::points_writer_qos();
-  fdds::DataWriter* writer = publisher->create_datawriter(t, qos);
+  fdds::DataWriter* writer = publisher ? publisher->create_datawriter(t, qos) : nullptr;
   if (!writer) {
-    std::fprintf(stderr, "raw_cdr_writer: cannot create a writer of %s\n", topic.c_str());
+    std::string in;
+    for (const std::string& p : partitions) in += (in.empty() ? " in partition " : ", ") + p;
+    std::fprintf(stderr, "raw_cdr_writer: cannot create a writer of %s%s\n", topic.c_str(),
+                 in.c_str());
     return 1;
   }
   const auto deadline = std::chrono::steady_clock::now() +

@@ -1,7 +1,8 @@
 #pragma once
 /// The aggregator's DDS side: one participant; a reader of the map patches (reliable,
-/// transient-local, keep-all) whose listener only converts and enqueues; writers of the
-/// corrected keyframe poses (one instance per stream, reliable, transient-local), of the map
+/// transient-local, keep-all, every partition) whose listener only checks that each patch's
+/// stream is a partition of its writer (dds/stream_partition.hpp), converts and enqueues; writers
+/// of the corrected keyframe poses (one instance per stream, reliable, transient-local), of the map
 /// summary (reliable, transient-local) and of the status (DiagnosticArray, also on
 /// topics.diagnostics: rt/diagnostics); the mapping thread
 /// in between. For every stream seen in the patches (or recovered from the store), a reader of
@@ -21,6 +22,7 @@
 #include "litamin2/aggregator/patch_queue.hpp"
 #include "litamin2/dds/checked_type.hpp"
 #include "litamin2/dds/participant_factory.hpp"
+#include "litamin2/dds/writer_partitions.hpp"
 #include "litamin2/msg/MapPatchPubSubTypes.h"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 
@@ -92,6 +94,8 @@ class AggregatorNode {
   AggregatorConfig config_;
   std::unique_ptr<AggregatorCore> core_;
   PatchQueue queue_;
+  /// The map patch writers' partitions (the participant's listener): outlives the participant.
+  dds::WriterPartitions writer_partitions_;
   PatchListener listener_;
   dds::ParticipantPtr participant_;
   eprosima::fastdds::dds::TypeSupport patch_type_, poses_type_, summary_type_, status_type_,
@@ -100,6 +104,8 @@ class AggregatorNode {
   dds::CheckedType<litamin2::msg::MapPatchPubSubType>* checked_patch_type_ = nullptr;
   dds::CheckedType<nav_msgs::msg::OdometryPubSubType>* checked_odometry_type_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  /// The map patches' subscriber: every partition (one per stream, dds/stream_partition.hpp).
+  eprosima::fastdds::dds::Subscriber* patch_subscriber_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
   eprosima::fastdds::dds::DataWriter* status_writer_ = nullptr;

@@ -1,15 +1,16 @@
 #pragma once
 /// The daemon's DDS side: one participant; per stream a reader of rt/<stream>/points (created
 /// when discovery reports a writer, reliable if the writer is), a tracker on the shared
-/// StreamScheduler, and a writer of rt/<stream>/odom; one writer each for map patches,
-/// status (also on rt/diagnostics unless outputs.diagnostics_topic is empty), rt/tf (every stream's
-/// odom -> base per pose) and rt/tf_static (every stream's base -> sensor, transient-local).
-/// Streams come from the config and, with discovery enabled, from every PointCloud2 topic matching
-/// the pattern. The main loop calls poll(); shutdown() stops input, drains the queues within the
-/// configured time and publishes a final status. With sharding (docs/deploy.md, "Several daemon
-/// hosts") the participant announces the member id in its USER_DATA, the node follows the live
-/// daemons (Membership) and tracks only the discovered streams that rendezvous hashing gives it; it
-/// reads every known stream's rt/<stream>/odom and the map patches' keyframe ids (HandoverListener)
+/// StreamScheduler, a writer of rt/<stream>/odom and a writer of the map patches in the
+/// partition of the stream id (dds/stream_partition.hpp); one writer each for status (also on
+/// rt/diagnostics unless outputs.diagnostics_topic is empty), rt/tf (every stream's odom -> base
+/// per pose) and rt/tf_static (every stream's base -> sensor, transient-local). Streams come from
+/// the config and, with discovery enabled, from every PointCloud2 topic matching the pattern. The
+/// main loop calls poll(); shutdown() stops input, drains the queues within the configured time and
+/// publishes a final status. With sharding (docs/deploy.md, "Several daemon hosts") the participant
+/// announces the member id in its USER_DATA, the node follows the live daemons (Membership) and
+/// tracks only the discovered streams that rendezvous hashing gives it; it reads every known
+/// stream's rt/<stream>/odom and the map patches' keyframe ids (HandoverListener, every partition)
 /// so that a stream moving here continues its odometry frame and keyframe ids
 /// (stream_handover.hpp).
 
@@ -103,7 +104,8 @@ class DaemonNode {
   eprosima::fastdds::dds::TypeSupport status_type_;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
-  eprosima::fastdds::dds::DataWriter* map_patch_writer_ = nullptr;
+  /// Map patches: each stream has its publisher (partition = stream id) and writer.
+  eprosima::fastdds::dds::Topic* patches_topic_ = nullptr;
   eprosima::fastdds::dds::DataWriter* status_writer_ = nullptr;
   /// outputs.diagnostics_topic (null when empty): the status again, for ROS 2's /diagnostics.
   eprosima::fastdds::dds::DataWriter* diagnostics_writer_ = nullptr;
@@ -125,6 +127,8 @@ class DaemonNode {
   std::map<std::string, KnownStream> known_;
   HandoverListener handover_;
   eprosima::fastdds::dds::DataReader* patch_ids_reader_ = nullptr;
+  /// patch_ids_reader_'s subscriber: every partition (one per stream, dds/stream_partition.hpp).
+  eprosima::fastdds::dds::Subscriber* patch_ids_subscriber_ = nullptr;
   std::string own_participant_;
   Clock::time_point claim_after_{};
   bool claiming_ = false;

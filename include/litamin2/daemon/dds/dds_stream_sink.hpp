@@ -1,8 +1,8 @@
 #pragma once
 /// A stream's ResultSink on DDS: nav_msgs/Odometry on rt/<stream>/odom for every frame (with
 /// the twist since the previous frame when there is one), the same pose as odom -> base on
-/// rt/tf (tf2_msgs/TFMessage) when a tf writer is given, and a litamin2 MapPatch on the shared
-/// map patches topic for every keyframe.
+/// rt/tf (tf2_msgs/TFMessage) when a tf writer is given, and a litamin2 MapPatch on the map
+/// patches topic (through the stream's writer, in the stream's partition) for every keyframe.
 
 #include "litamin2/daemon/result_sink.hpp"
 #include "litamin2/daemon/stream_frames.hpp"
@@ -15,7 +15,7 @@ namespace litamin2::daemon {
 
 class DdsStreamSink : public ResultSink {
  public:
-  /// `odom_writer` (this stream's), `map_patch_writer` and `tf_writer` (shared; DataWriter::write
+  /// `odom_writer` and `map_patch_writer` (this stream's), `tf_writer` (shared; DataWriter::write
   /// is thread-safe; `tf_writer` may be null: no rt/tf) must outlive the sink. Odometry headers
   /// and transforms name `frames.odom` and `frames.base`.
   DdsStreamSink(eprosima::fastdds::dds::DataWriter* odom_writer,
