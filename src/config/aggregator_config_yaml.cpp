@@ -64,6 +64,7 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
     publish.read_range("summary_max_means", config.publish.summary_max_means, 0, 10'000'000);
     publish.read_range("tiles_period_s", config.publish.tiles_period_s, 0.0, 86400.0);
     publish.read_range("status_period_s", config.publish.status_period_s, 0.01, 3600.0);
+    publish.read_range("map_frame_settle_s", config.publish.map_frame_settle_s, 0.0, 600.0);
     publish.reject_unknown();
   }
 

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <thread>
 #include <vector>
 
 using namespace litamin2;
@@ -224,4 +225,38 @@ TEST(AggregatorMapOdometryRelay, AChangedCorrectionSendsItsTransformWithoutANewP
   relay.flush();
   EXPECT_EQ(transforms.size(), 2u);
   EXPECT_EQ(poses, 1);
+}
+
+TEST(AggregatorMapOdometryRelay, MapFrameOutputsWaitForTheSettlingThenCarryTheLatestCorrection) {
+  // Two vehicles start together; car_b's first patch arrived first, so for a moment the map
+  // frame is car_b's odometry frame. Nothing in the map frame may go out before the settling
+  // ends; then the corrections of that time (car_b no longer in the map frame) are used.
+  using namespace std::chrono_literals;
+  MapOdometryRelay relay(300ms);
+  std::vector<nav_msgs::msg::Odometry> a_out, b_out;
+  relay.add_stream("car_a", [&](const nav_msgs::msg::Odometry& m) { a_out.push_back(m); });
+  relay.add_stream("car_b", [&](const nav_msgs::msg::Odometry& m) { b_out.push_back(m); });
+  const Matrix6d zero = Matrix6d::Zero();
+  relay.set_correction("car_b", {pose_of(0, 0, 0, 0), "map"});
+  relay.offer("car_b", odometry_at(pose_of(1, 0, 0, 0), zero));
+  relay.flush();
+  EXPECT_TRUE(b_out.empty());  // held: the map frame is not settled
+  relay.set_correction("car_a", {pose_of(0, 0, 0, 0), "map"});
+  relay.set_correction("car_b", {pose_of(0, 0, 0, 0), "car_b/odom"});
+  relay.offer("car_a", odometry_at(pose_of(2, 0, 0, 0), zero));
+  relay.flush();
+  // car_b's frame is its own now: not held; car_a's (map) still is.
+  ASSERT_EQ(b_out.size(), 1u);
+  EXPECT_EQ(b_out[0].header().frame_id(), "car_b/odom");
+  EXPECT_TRUE(a_out.empty());
+  relay.start();  // its thread publishes what was held once the settling ends
+  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (relay.status().at("car_a").published == 1) break;
+    std::this_thread::sleep_for(10ms);
+  }
+  relay.stop();
+  ASSERT_EQ(a_out.size(), 1u);
+  EXPECT_EQ(a_out[0].header().frame_id(), "map");
+  for (const auto& m : b_out) EXPECT_NE(m.header().frame_id(), "map");
 }

@@ -128,6 +128,7 @@ TEST(ConfigShippedDefaults, AggregatorDdsOnlyConfigBehavesAsTheShippedFile) {
   EXPECT_EQ(sp.summary_period_s, mp.summary_period_s);
   EXPECT_EQ(sp.summary_max_means, mp.summary_max_means);
   EXPECT_EQ(sp.tiles_period_s, mp.tiles_period_s);
+  EXPECT_EQ(sp.map_frame_settle_s, mp.map_frame_settle_s);
   EXPECT_EQ(sp.status_period_s, mp.status_period_s);
   EXPECT_EQ(mapping::mapper_config_to_yaml(shipped.mapper),
             mapping::mapper_config_to_yaml(minimal.mapper));

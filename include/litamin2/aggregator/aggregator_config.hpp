@@ -84,6 +84,11 @@ struct PublishConfig {
   double tiles_period_s = 2.0;
   /// Status period, seconds.
   double status_period_s = 1.0;
+  /// Poses on rt/<stream>/map_odom and map -> odom transforms in the map frame start this
+  /// long after the first keyframe, seconds (held until then, the latest kept): vehicles that
+  /// start together send their first patches in any order, and the map frame (the odometry
+  /// frame of the stream that starts first) is settled only once all of them arrived.
+  double map_frame_settle_s = 2.0;
 };
 
 /// The global map in tiles (mapping/tile_map.hpp).

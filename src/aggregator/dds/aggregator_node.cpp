@@ -19,6 +19,7 @@
 #include "tf2_msgs/msg/TFMessagePubSubTypes.h"
 
 #include <spdlog/spdlog.h>
+#include <cmath>
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
@@ -98,7 +99,8 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
     : config_(std::move(config)),
       queue_(static_cast<std::size_t>(config_.ingest.queue_capacity)),
       writer_partitions_(config_.topics.map_patches),
-      listener_(queue_, patch_options(config_), &writer_partitions_) {
+      listener_(queue_, patch_options(config_), &writer_partitions_),
+      relay_(std::chrono::milliseconds(std::llround(config_.publish.map_frame_settle_s * 1000.0))) {
   // KeyframePoses is keyed by stream only: chunks of a stream would replace each other.
   if (config_.publish.poses_chunk_keyframes != 0)
     throw std::invalid_argument(

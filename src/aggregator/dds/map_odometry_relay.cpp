@@ -2,6 +2,8 @@
 
 #include <vector>
 
+#include "litamin2/aggregator/dds/aggregator_messages.hpp"
+
 namespace litamin2::aggregator {
 namespace {
 
@@ -9,7 +11,12 @@ constexpr std::chrono::seconds kRateWindow(1);
 
 }  // namespace
 
-MapOdometryRelay::MapOdometryRelay() = default;
+MapOdometryRelay::MapOdometryRelay(std::chrono::milliseconds map_frame_settle)
+    : map_frame_settle_(map_frame_settle) {}
+
+bool MapOdometryRelay::settling(Clock::time_point now) const {
+  return !settle_end_ || now < *settle_end_;
+}
 
 MapOdometryRelay::~MapOdometryRelay() {
   stop();
@@ -58,6 +65,7 @@ void MapOdometryRelay::reject(const std::string& stream) {
 void MapOdometryRelay::set_correction(const std::string& stream, MapCorrection correction) {
   {
     std::lock_guard lock(mutex_);
+    if (!settle_end_) settle_end_ = Clock::now() + map_frame_settle_;
     Stream& s = streams_[stream];
     s.counts.frame_id = correction.frame_id;
     const bool changed = !s.correction || s.correction->frame_id != correction.frame_id ||
@@ -101,7 +109,13 @@ void MapOdometryRelay::flush() {
   {
     std::lock_guard lock(mutex_);
     pending_ = false;
+    const bool hold_map_frame = settling(Clock::now());
     for (auto& [name, s] : streams_) {
+      if (hold_map_frame && s.correction && s.correction->frame_id == kMapFrame &&
+          (s.pending || s.transform_pending)) {
+        held_ = true;  // run() flushes again when the settling ends
+        continue;
+      }
       if (s.transform_pending && !s.pending && s.last_header->stamp() != s.transform_stamp) {
         // A changed correction without a new pose to carry it, at the latest odometry's stamp
         // unless a transform went out at that stamp already: tf2 ignores a repeated stamp
@@ -139,7 +153,13 @@ void MapOdometryRelay::run() {
   for (;;) {
     {
       std::unique_lock lock(mutex_);
-      wake_.wait(lock, [this] { return pending_ || stopping_; });
+      const auto ready = [this] { return pending_ || stopping_; };
+      if (held_ && settle_end_) {
+        wake_.wait_until(lock, *settle_end_, ready);
+        held_ = false;
+      } else {
+        wake_.wait(lock, ready);
+      }
       if (stopping_) return;
     }
     flush();

@@ -49,7 +49,13 @@ class MapOdometryRelay {
   /// Writes the stream's map -> odom transform (to_map_transform) with each of those poses.
   using PublishTransform = std::function<void(const geometry_msgs::msg::TransformStamped&)>;
 
-  MapOdometryRelay();
+  /// `map_frame_settle`: poses and transforms in the map frame go out only once this long has
+  /// passed since the first correction (held, the latest kept, until then; other frames are not
+  /// held). When several vehicles start together, the map frame belongs to the stream that
+  /// starts first, but their first patches reach the aggregator in any order, and for a moment
+  /// the map frame may be another vehicle's odometry frame; poses published in it then would
+  /// be wrong by the distance between the vehicles.
+  explicit MapOdometryRelay(std::chrono::milliseconds map_frame_settle = {});
   /// Stops (see stop()).
   ~MapOdometryRelay();
   MapOdometryRelay(const MapOdometryRelay&) = delete;
@@ -97,11 +103,18 @@ class MapOdometryRelay {
     std::uint64_t window_count = 0;
   };
   void run();
+  /// Map-frame outputs are still held (see the constructor); caller holds mutex_.
+  bool settling(Clock::time_point now) const;
 
+  const std::chrono::milliseconds map_frame_settle_;
+  /// The first correction's time plus map_frame_settle_.
+  std::optional<Clock::time_point> settle_end_;
   mutable std::mutex mutex_;
   std::condition_variable wake_;
   std::map<std::string, Stream> streams_;
   bool pending_ = false;
+  /// Map-frame outputs were held back by the settling.
+  bool held_ = false;
   bool stopping_ = false;
   std::thread thread_;
 };
