@@ -172,10 +172,10 @@ echo
 echo "== results"
 grep -E "^stream |^status " probe.log | sed 's/^/  /'
 grep -E "shut down" daemon.log | sed 's/^<[0-9]>info: /  litamin2d /'
-json_value() {  # json_value FILE KEY: the number after "KEY": (or n/a)
+json_value() {  # json_value FILE KEY: the number after "KEY": to 4 decimals (or n/a)
   local v
   v=$(grep -o "\"$2\": [^,}]*" "$1" | head -1 | awk '{print $2}')
-  [ -n "$v" ] && [ "$v" != null ] && echo "$v" || echo n/a
+  [ -n "$v" ] && [ "$v" != null ] && LC_ALL=C printf '%.4f' "$v" || echo n/a
 }
 for s in "${streams[@]}"; do
   f="offline_$s/stats.json"
