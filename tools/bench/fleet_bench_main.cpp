@@ -18,6 +18,8 @@
 #include "litamin2/core/stopwatch.hpp"
 #include "litamin2/io/trajectory.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -393,44 +395,55 @@ int main(int argc, char** argv) {
     }
   }
 
-  std::ostringstream j;
-  j.setf(std::ios::fixed);
-  j.precision(3);
-  j << "{\n  \"vehicles\": " << o.vehicles << ",\n  \"keyframes\": " << keyframes
-    << ",\n  \"distributions_per_keyframe\": " << (keyframes ? distributions_total / keyframes : 0)
-    << ",\n  \"loops\": " << loops << ",\n  \"full_passes\": " << full_passes
-    << ",\n  \"mapping_cpu_ms_per_keyframe\": {\n    \"all\": " << window_ms(batches, 0, keyframes)
-    << ",\n    \"first_10k\": " << window_ms(batches, 0, std::min<std::size_t>(10000, keyframes))
-    << ",\n    \"last_10k\": "
-    << window_ms(batches, keyframes > 10000 ? keyframes - 10000 : 0, keyframes);
+  using Json = nlohmann::ordered_json;
+  Json windows = {
+      {"all", window_ms(batches, 0, keyframes)},
+      {"first_10k", window_ms(batches, 0, std::min<std::size_t>(10000, keyframes))},
+      {"last_10k", window_ms(batches, keyframes > 10000 ? keyframes - 10000 : 0, keyframes)}};
   for (std::size_t d = 1; d < keyframes; d *= 10) {
-    j << ",\n    \"" << d << "-" << std::min(10 * d, keyframes)
-      << "\": " << window_ms(batches, d, std::min(10 * d, keyframes));
+    windows[std::to_string(d) + "-" + std::to_string(std::min(10 * d, keyframes))] =
+        window_ms(batches, d, std::min(10 * d, keyframes));
   }
-  j << "\n  },\n  \"background_full_pass_cpu_ms_per_keyframe\": "
-    << (keyframes ? 1000.0 * background_cpu_s / keyframes : 0)
-    << ",\n  \"loop_latency_ms_p50\": " << percentile(loop_latency_ms, 0.5)
-    << ",\n  \"loop_latency_ms_p99\": " << percentile(loop_latency_ms, 0.99)
-    << ",\n  \"peak_rss_mb\": " << rss_run
-    << ",\n  \"peak_rss_mb_after_restart\": " << peak_rss_mb()
-    << ",\n  \"store_mb\": " << file_mb(o.store) << ",\n  \"restart_s\": " << restart_s
-    << ",\n  \"restart_identical\": " << (restart_identical ? "true" : "false")
-    << ",\n  \"wrong_loops\": " << wrong_loops << ",\n  \"worst_loop_error_m\": " << worst_loop_m
-    << ",\n  \"group_merges\": " << merges << ",\n  \"wrong_group_merges\": " << wrong_merges
-    << ",\n  \"diverged_solves\": " << diverged << ",\n  \"ate_m\": " << ate
-    << ",\n  \"keyframes_in_map_frame\": " << in_map
-    << ",\n  \"vehicles_in_map_frame\": " << merged.size() << ",\n  \"tiles\": " << tiles
-    << ",\n  \"keyframes_not_fused_at_stop\": " << map_pending
-    << ",\n  \"tile_segment_keyframes\": " << o.tile_segment_keyframes
-    << ",\n  \"tile_segments\": " << tile_stats.segments
-    << ",\n  \"tile_segment_placements\": " << tile_stats.segment_placements
-    << ",\n  \"tile_segment_recomputes\": " << tile_stats.segment_recomputes
-    << ",\n  \"tile_keyframe_fusions\": " << tile_stats.added + tile_stats.subtracted
-    << ",\n  \"published\": {\"pose_messages\": " << sink.pose_messages
-    << ", \"pose_entries\": " << sink.pose_entries << ", \"summaries\": " << sink.summaries
-    << ", \"tiles\": " << sink.tiles << "}"
-    << ",\n  \"wall_s\": " << wall_s << "\n}\n";
-  std::cout << j.str();
-  if (!o.json.empty()) std::ofstream(o.json) << j.str();
+  const Json summary = {
+      {"vehicles", o.vehicles},
+      {"keyframes", keyframes},
+      {"distributions_per_keyframe", keyframes ? distributions_total / keyframes : 0},
+      {"loops", loops},
+      {"full_passes", full_passes},
+      {"mapping_cpu_ms_per_keyframe", windows},
+      {"background_full_pass_cpu_ms_per_keyframe",
+       keyframes ? 1000.0 * background_cpu_s / keyframes : 0.0},
+      {"loop_latency_ms_p50", percentile(loop_latency_ms, 0.5)},
+      {"loop_latency_ms_p99", percentile(loop_latency_ms, 0.99)},
+      {"peak_rss_mb", rss_run},
+      {"peak_rss_mb_after_restart", peak_rss_mb()},
+      {"store_mb", file_mb(o.store)},
+      {"restart_s", restart_s},
+      {"restart_identical", restart_identical},
+      {"wrong_loops", wrong_loops},
+      {"worst_loop_error_m", worst_loop_m},
+      {"group_merges", merges},
+      {"wrong_group_merges", wrong_merges},
+      {"diverged_solves", diverged},
+      {"ate_m", ate},
+      {"keyframes_in_map_frame", in_map},
+      {"vehicles_in_map_frame", merged.size()},
+      {"tiles", tiles},
+      {"keyframes_not_fused_at_stop", map_pending},
+      {"tile_segment_keyframes", o.tile_segment_keyframes},
+      {"tile_segments", tile_stats.segments},
+      {"tile_segment_placements", tile_stats.segment_placements},
+      {"tile_segment_recomputes", tile_stats.segment_recomputes},
+      {"tile_keyframe_fusions", tile_stats.added + tile_stats.subtracted},
+      {"published",
+       {{"pose_messages", sink.pose_messages},
+        {"pose_entries", sink.pose_entries},
+        {"summaries", sink.summaries},
+        {"tiles", sink.tiles}}},
+      {"wall_s", wall_s}};
+  // NaN/Inf (an empty window) become null; the text is valid JSON either way.
+  const std::string text = summary.dump(2) + "\n";
+  std::cout << text;
+  if (!o.json.empty()) std::ofstream(o.json) << text;
   return 0;
 }
