@@ -76,16 +76,9 @@ int main(int argc, char** argv) {
 
   ServiceLoop service_loop(config.watchdog.enabled);
   // Before DDS starts: a port that cannot be bound fails the start with nothing published.
-  std::unique_ptr<metrics::MetricsEndpoint> metrics;
-  try {
-    metrics = std::make_unique<metrics::MetricsEndpoint>(config.metrics);
-  } catch (const std::exception& e) {
-    spdlog::error("cannot start the metrics endpoint: {}", e.what());
-    spdlog::default_logger()->flush();
-    return 1;
-  }
-  if (metrics->enabled())
-    spdlog::info("metrics: http://{}/metrics, /healthz, /readyz", config.metrics.listen);
+  const std::unique_ptr<metrics::MetricsEndpoint> metrics =
+      metrics::start_metrics_endpoint(config.metrics);
+  if (!metrics) return 1;
   int exit_code = 0;
   try {
     DaemonNode node(config);

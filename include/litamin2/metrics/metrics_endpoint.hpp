@@ -37,4 +37,9 @@ class MetricsEndpoint {
   Clock::time_point next_{};
 };
 
+/// A service's endpoint for `config`, started before its DDS side: logs the URLs when enabled;
+/// when the port cannot be bound, logs why (flushed) and returns null, and the process exits 1
+/// with nothing published.
+std::unique_ptr<MetricsEndpoint> start_metrics_endpoint(const service::MetricsConfig& config);
+
 }  // namespace litamin2::metrics
