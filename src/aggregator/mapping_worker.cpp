@@ -69,6 +69,9 @@ void MappingWorker::run() {
     if (n > 0 && !failed_) process(batch, report);
     batch.clear();
     if (n == 0 && queue_.closed() && queue_.size() == 0) break;
+    // The poses this batch corrected go out before the tile work and the full pass (when the
+    // poses period allows): a loop's correction does not wait behind the map.
+    publish_poses_if_due(&report);
     if (!failed_) {
       update_map();
       report.full_pass = full_pass(false, &report);
@@ -180,6 +183,7 @@ void MappingWorker::process(std::vector<Keyframe>& batch, TurnReport& report) {
   const mapping::Mapper& mapper = core_.mapper();
   report.added = r.added;
   report.new_loops = r.new_loops;
+  report.optimization = r.optimization;
   if (r.optimization.ran) {
     spdlog::debug("optimised: {} keyframes, {} loop edges, cost {:.4g} -> {:.4g}, {:.1f} ms",
                   r.optimization.keyframes, r.optimization.loop_edges, r.optimization.initial_cost,
@@ -243,6 +247,10 @@ void MappingWorker::publish_poses(TurnReport* report) {
   next_poses_ = now + seconds(config_.publish.poses_period_s);
   std::lock_guard lock(mutex_);
   status_.poses_cpu_s += thread_cpu_seconds() - t;
+}
+
+void MappingWorker::publish_poses_if_due(TurnReport* report) {
+  if (!dirty_chunks_.empty() && (poses_now_ || Clock::now() >= next_poses_)) publish_poses(report);
 }
 
 void MappingWorker::publish(bool force, TurnReport* report) {

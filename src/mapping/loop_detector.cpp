@@ -18,16 +18,19 @@ constexpr double kDegToRad = M_PI / 180.0;
 std::optional<LoopEdge> LoopDetector::detect(std::uint32_t query,
                                              const std::vector<Distribution>& distributions,
                                              const KeyframeGraph& graph, DistributionCache& cache,
-                                             MapperStats& stats, MapperCpu& cpu) const {
+                                             MapperStats& stats, MapperCpu& cpu,
+                                             SearchScope scope) const {
   // The nearest keyframe by pose estimate first, then the descriptor's candidate.
   std::vector<LoopCandidate> candidates;
   double t = thread_cpu_seconds();
-  if (auto c = proximity_candidate(query, graph)) candidates.push_back(*c);
+  if (scope == SearchScope::kAll) {
+    if (auto c = proximity_candidate(query, graph)) candidates.push_back(*c);
+  }
   double now = thread_cpu_seconds();
   cpu.proximity_s += now - t;
   t = now;
   // The descriptor's candidate may be the same keyframe: its yaw is still another start.
-  if (auto c = descriptor_candidate(query, graph)) candidates.push_back(*c);
+  if (auto c = descriptor_candidate(query, graph, scope)) candidates.push_back(*c);
   now = thread_cpu_seconds();
   cpu.descriptor_search_s += now - t;
   t = now;
@@ -62,9 +65,11 @@ std::optional<LoopEdge> LoopDetector::detect(std::uint32_t query,
 }
 
 bool LoopDetector::eligible(const KeyframeNode& query, std::uint32_t candidate,
-                            const KeyframeGraph& graph) const {
+                            const KeyframeGraph& graph, SearchScope scope) const {
   const KeyframeNode& c = graph.node(candidate);
   if (&c == &query) return false;
+  if (scope == SearchScope::kOtherGroups)
+    return graph.groups().anchor_of(c.stream) != graph.groups().anchor_of(query.stream);
   if (c.stream != query.stream) return true;
   return std::abs(query.path_length - c.path_length) >= config_.place.min_travel_gap;
 }
@@ -104,7 +109,8 @@ std::optional<LoopCandidate> LoopDetector::proximity_candidate(std::uint32_t que
 }
 
 std::optional<LoopCandidate> LoopDetector::descriptor_candidate(std::uint32_t query,
-                                                                const KeyframeGraph& graph) const {
+                                                                const KeyframeGraph& graph,
+                                                                SearchScope scope) const {
   const PlaceRecognitionConfig& pc = config_.place;
   const KeyframeNode& q = graph.node(query);
   auto before = [&](std::uint32_t a, std::uint32_t b) {
@@ -114,7 +120,7 @@ std::optional<LoopCandidate> LoopDetector::descriptor_candidate(std::uint32_t qu
   if (pc.search == PlaceSearch::kLinear) {
     std::vector<std::pair<double, std::uint32_t>> all;
     for (const auto& [key, n] : graph.by_key()) {
-      if (!eligible(q, n, graph)) continue;
+      if (!eligible(q, n, graph, scope)) continue;
       all.emplace_back(ring_key_distance(q.descriptor, graph.node(n).descriptor), n);
     }
     const std::size_t keep = std::min<std::size_t>(pc.ring_key_candidates, all.size());
@@ -126,7 +132,7 @@ std::optional<LoopCandidate> LoopDetector::descriptor_candidate(std::uint32_t qu
   } else {
     shortlist = graph.ring_keys().nearest(
         q.descriptor.ring_key, static_cast<std::size_t>(pc.ring_key_candidates),
-        [&](std::uint32_t n) { return eligible(q, n, graph); }, before);
+        [&](std::uint32_t n) { return eligible(q, n, graph, scope); }, before);
   }
   std::int64_t best = -1;
   DescriptorMatch best_match;

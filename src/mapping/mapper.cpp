@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 namespace litamin2::mapping {
@@ -106,17 +107,19 @@ struct Mapper::Impl {
   /// Per stream, the path length at its latest verified loop (loop_spacing).
   std::vector<double> last_loop;
 
-  /// Whether the stream's new keyframe at `path` is due a place search (search_spacing,
-  /// loop_spacing).
-  bool search_due(std::uint32_t stream, double path) {
+  /// Whether the stream's new keyframe at `path` is due a place search (search_spacing), and
+  /// in which keyframes: within loop_spacing after the stream's latest loop inside its group,
+  /// only other groups'.
+  std::optional<SearchScope> search_due(std::uint32_t stream, double path) {
+    if (config.place.search_spacing > 0.0) {
+      if (last_search.size() <= stream) last_search.resize(stream + 1, -1e300);
+      if (std::abs(path - last_search[stream]) < config.place.search_spacing) return std::nullopt;
+      last_search[stream] = path;
+    }
     if (config.place.loop_spacing > 0.0 && stream < last_loop.size() && path >= last_loop[stream] &&
         path - last_loop[stream] < config.place.loop_spacing)
-      return false;
-    if (config.place.search_spacing <= 0.0) return true;
-    if (last_search.size() <= stream) last_search.resize(stream + 1, -1e300);
-    if (std::abs(path - last_search[stream]) < config.place.search_spacing) return false;
-    last_search[stream] = path;
-    return true;
+      return SearchScope::kOtherGroups;
+    return SearchScope::kAll;
   }
 };
 
@@ -153,11 +156,16 @@ AddStatus Mapper::add_keyframe(Keyframe keyframe, std::vector<LoopEdge>* new_loo
   ++m.stats.keyframes;
   m.cpu.chain_s += thread_cpu_seconds() - t1;
   const KeyframeNode& stored = m.graph.node(index);
-  if (m.search_due(stored.stream, stored.path_length)) {
-    if (const auto loop =
-            m.detector.detect(index, keyframe.distributions, m.graph, *m.cache, m.stats, m.cpu)) {
-      if (m.last_loop.size() <= stored.stream) m.last_loop.resize(stored.stream + 1, -1e300);
-      m.last_loop[stored.stream] = stored.path_length;
+  if (const auto scope = m.search_due(stored.stream, stored.path_length)) {
+    if (const auto loop = m.detector.detect(index, keyframe.distributions, m.graph, *m.cache,
+                                            m.stats, m.cpu, *scope)) {
+      const StreamGroups& groups = m.graph.groups();
+      const KeyframeNode& from = m.graph.node(static_cast<std::uint32_t>(m.graph.find(loop->from)));
+      if (groups.anchor_of(from.stream) == groups.anchor_of(stored.stream)) {
+        // A loop inside the group holds the drift: the next ones wait loop_spacing metres.
+        if (m.last_loop.size() <= stored.stream) m.last_loop.resize(stored.stream + 1, -1e300);
+        m.last_loop[stored.stream] = stored.path_length;
+      }
       m.offer_loop(*loop, new_loops);
     }
   }

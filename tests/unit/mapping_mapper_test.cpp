@@ -3,6 +3,7 @@
 // poses merged into one frame.
 
 #include "litamin2/core/voxelizer.hpp"
+#include "litamin2/mapping/loop_detector.hpp"
 #include "litamin2/mapping/mapper.hpp"
 #include "support/street_drive.hpp"
 #include "support/synthetic_scene.hpp"
@@ -171,4 +172,34 @@ TEST_F(TwoVehicles, MapFrameDoesNotDependOnArrivalOrder) {
   for (const auto& kf : a) mapper.add_keyframe(kf);
   mapper.optimize();
   expect_both_in_a_frame(mapper);
+}
+
+TEST_F(TwoVehicles, ASearchOfOtherGroupsFindsOnlyTheirKeyframes) {
+  // Within loop_spacing after a loop in its own group a stream searches only other groups
+  // (SearchScope::kOtherGroups): the descriptor's candidate is another group's keyframe, and
+  // there is no proximity candidate (it is of the query's group).
+  MapperConfig config = street_config();
+  config.place.merge_confirmations = 100;  // the two groups stay apart
+  Mapper mapper(config);
+  for (const auto& kf : a) mapper.add_keyframe(kf);
+  for (const auto& kf : b) mapper.add_keyframe(kf);
+  const KeyframeGraph& graph = mapper.graph();
+  const StreamGroups& groups = graph.groups();
+  ASSERT_NE(groups.anchor_of("a"), groups.anchor_of("b"));
+  const LoopDetector detector(mapper.config());
+  std::size_t found = 0;
+  for (std::uint64_t id = 0; id < b.size(); ++id) {
+    const auto query = static_cast<std::uint32_t>(graph.find({"b", id}));
+    if (const auto c = detector.descriptor_candidate(query, graph, SearchScope::kOtherGroups)) {
+      EXPECT_EQ(graph.node(c->node).key.stream, "a") << id;
+      ++found;
+    }
+    // a's own drive passes every place twice: searching a's keyframes among other groups
+    // never returns one of a's.
+    const auto qa = static_cast<std::uint32_t>(graph.find({"a", id}));
+    if (const auto c = detector.descriptor_candidate(qa, graph, SearchScope::kOtherGroups)) {
+      EXPECT_EQ(graph.node(c->node).key.stream, "b") << id;
+    }
+  }
+  EXPECT_GT(found, b.size() / 2) << "b's places are a's: most searches should find one";
 }

@@ -240,9 +240,17 @@ int main(int argc, char** argv) {
     mapping::TileMapStats last_ts;
     std::size_t reported_keyframes = 0;
     double last_poses_cpu = 0.0, last_summary_cpu = 0.0, last_tiles_cpu = 0.0;
+    // The local optimisations since the last report: solves, keyframes, loop edges, iterations.
+    std::size_t local_solves = 0, local_keyframes = 0, local_loop_edges = 0, local_iterations = 0;
     // On the mapping thread after each turn: its CPU, loop latencies and a report per 10k.
     worker.observe([&](const TurnReport& turn) {
       keyframes += turn.added;
+      if (turn.optimization.ran) {
+        ++local_solves;
+        local_keyframes += static_cast<std::size_t>(turn.optimization.keyframes);
+        local_loop_edges += static_cast<std::size_t>(turn.optimization.loop_edges);
+        local_iterations += static_cast<std::size_t>(turn.optimization.iterations);
+      }
       batches.emplace_back(keyframes, turn.cpu_s);
       loop_latency_ms.insert(loop_latency_ms.end(), turn.loop_latency_ms.begin(),
                              turn.loop_latency_ms.end());
@@ -283,6 +291,14 @@ int main(int argc, char** argv) {
           ms.verified - last_ms.verified, ms.diverged, core.tiles().index().size(),
           core.map_pending(), ts.segments, ts.segment_placements - last_ts.segment_placements,
           ts.segment_recomputes - last_ts.segment_recomputes, ts.segment_bytes / 1048576.0);
+      const double solves = static_cast<double>(std::max<std::size_t>(local_solves, 1));
+      std::fprintf(stderr,
+                   "  local solves %zu: per solve %.0f keyframes, %.0f loop edges, %.1f "
+                   "iterations\n",
+                   local_solves, static_cast<double>(local_keyframes) / solves,
+                   static_cast<double>(local_loop_edges) / solves,
+                   static_cast<double>(local_iterations) / solves);
+      local_solves = local_keyframes = local_loop_edges = local_iterations = 0;
       last_ts = ts;
       last_ms = ms;
       last_in = in;

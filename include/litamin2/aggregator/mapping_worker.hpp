@@ -1,6 +1,8 @@
 #pragma once
 /// The aggregator's mapping thread. Each turn: takes a batch of keyframes off the PatchQueue
-/// and ingests it (store commit, then mapper); fuses at most map_tiles.max_keyframes_per_turn
+/// and ingests it (store commit, then mapper); publishes the corrected poses (when the poses
+/// period allows) before any map work, so that a loop's correction does not wait behind the
+/// tiles; fuses at most map_tiles.max_keyframes_per_turn
 /// of the keyframes that arrived or moved into the map tiles (and commits them); applies a
 /// solved background full pass and starts the next when due; publishes, each at most at its
 /// period, the corrected poses of the pose chunks holding a keyframe that was added or moved,
@@ -82,6 +84,9 @@ struct TurnReport {
   /// From the start of the ingest of each earlier batch with new loops to the publication of
   /// the corrected poses it caused, completed in this turn, milliseconds.
   std::vector<double> loop_latency_ms;
+  /// The local optimisation after this turn's loops (Mapper::optimize): ran, its free and
+  /// fixed keyframes and loop edges.
+  mapping::OptimizeSummary optimization;
   /// A full pass was applied in this turn.
   bool full_pass = false;
 };
@@ -118,6 +123,8 @@ class MappingWorker {
   /// Publishes what is due; `force`: all that is pending, now.
   void publish(bool force, TurnReport* report);
   void publish_poses(TurnReport* report);
+  /// Publishes the dirty pose chunks if the poses period has elapsed (or the map frame moved).
+  void publish_poses_if_due(TurnReport* report);
   /// Applies a solved full pass and starts the next when due (full_pass_due); at `stopping`,
   /// waits for the one in flight and runs a last one if configured. True if one was applied.
   bool full_pass(bool stopping, TurnReport* report);

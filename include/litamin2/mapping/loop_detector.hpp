@@ -25,6 +25,16 @@ struct LoopCandidate {
   Eigen::Isometry3d initial = Eigen::Isometry3d::Identity();
 };
 
+/// Which keyframes a place search considers.
+enum class SearchScope {
+  /// Every eligible keyframe: the proximity candidate of the query's group and the
+  /// descriptor's candidate of any group.
+  kAll,
+  /// Only other groups' keyframes (the descriptor's candidate; the proximity candidate is of
+  /// the query's group by definition): PlaceRecognitionConfig::loop_spacing after a loop.
+  kOtherGroups,
+};
+
 class LoopDetector {
  public:
   /// `config` must outlive the detector.
@@ -36,20 +46,21 @@ class LoopDetector {
   std::optional<LoopEdge> detect(std::uint32_t query,
                                  const std::vector<Distribution>& distributions,
                                  const KeyframeGraph& graph, DistributionCache& cache,
-                                 MapperStats& stats, MapperCpu& cpu) const;
+                                 MapperStats& stats, MapperCpu& cpu,
+                                 SearchScope scope = SearchScope::kAll) const;
 
   /// The eligible keyframe of the query's group nearest to its current pose estimate.
   std::optional<LoopCandidate> proximity_candidate(std::uint32_t query,
                                                    const KeyframeGraph& graph) const;
   /// The descriptor's best candidate, if its distance passes the threshold.
-  std::optional<LoopCandidate> descriptor_candidate(std::uint32_t query,
-                                                    const KeyframeGraph& graph) const;
+  std::optional<LoopCandidate> descriptor_candidate(std::uint32_t query, const KeyframeGraph& graph,
+                                                    SearchScope scope = SearchScope::kAll) const;
 
  private:
   /// Keyframes of the same stream closer than min_travel_gap along the path are neighbours,
   /// not loops.
-  bool eligible(const KeyframeNode& query, std::uint32_t candidate,
-                const KeyframeGraph& graph) const;
+  bool eligible(const KeyframeNode& query, std::uint32_t candidate, const KeyframeGraph& graph,
+                SearchScope scope = SearchScope::kAll) const;
   /// Target of a verification: the candidate and its neighbours of the same stream, in the
   /// candidate's sensor frame by odometry.
   VoxelMap submap_of(std::uint32_t candidate, const KeyframeGraph& graph,

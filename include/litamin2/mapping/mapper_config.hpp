@@ -41,11 +41,13 @@ struct PlaceRecognitionConfig {
   /// streets finds a candidate at nearly every keyframe; verifying each costs ~10 ms, so a
   /// fleet-scale aggregator samples them, as Cartographer's constraint builder does.
   double search_spacing = 0.0;
-  /// After a stream's keyframe finds a verified loop, the stream's next place search waits
-  /// until its path is this much further, metres (0: search_spacing alone). A fleet on
-  /// streets it has mapped finds a loop at nearly every search, and verifying each (~10 ms)
-  /// and optimising for it is what grows as the vehicles' maps merge; one loop every
-  /// loop_spacing metres of a revisit is what holds the odometry's drift.
+  /// After a stream's keyframe finds a verified loop inside its own group of streams, the
+  /// stream's place searches look only at other groups' keyframes (the descriptor's
+  /// candidate; no proximity candidate) until its path is this much further, metres (0:
+  /// search_spacing alone). A fleet on streets it has mapped finds a loop at nearly every
+  /// search, and verifying each (~10 ms) and optimising for it is what grows as the
+  /// vehicles' maps merge; one loop every loop_spacing metres of a revisit is what holds the
+  /// odometry's drift. The searches of other groups go on, so that merges are still found.
   double loop_spacing = 0.0;
   /// A loop between two groups of streams joins them only once this many verified loops
   /// between the same two groups agree on the transform between their frames (1 = the first
