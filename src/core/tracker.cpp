@@ -7,6 +7,7 @@
 #include <Eigen/Cholesky>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 namespace litamin2 {
 namespace {
@@ -77,8 +78,16 @@ const PointCloud& Tracker::without_self_hits(const PointCloud& scan, int& droppe
   return filtered_;
 }
 
-FrameResult Tracker::process(const PointCloud& raw) {
-  if (frames_ == 0 && config_.sensor == SensorModel::kAuto) {
+void Tracker::continue_from(TrackerSeed seed) {
+  if (frames_ != 0 || prepared_)
+    throw std::logic_error("Tracker::continue_from: only before the first scan");
+  pending_seed_ = std::make_unique<TrackerSeed>(std::move(seed));
+}
+
+void Tracker::prepare_first_scan(const PointCloud& raw) {
+  if (prepared_) return;
+  prepared_ = true;
+  if (config_.sensor == SensorModel::kAuto) {
     // `sensor: auto`: the first scan decides the preset; the (empty) voxeliser and map are
     // rebuilt with its values.
     apply_sensor_preset(nearest_sensor(measure_signature(raw)), config_);
@@ -87,6 +96,37 @@ FrameResult Tracker::process(const PointCloud& raw) {
     voxelizer_ = Voxelizer(config_.voxelizer);
     map_ = VoxelMap(config_.voxelizer, config_.map);
   }
+  if (pending_seed_) {
+    apply_seed(*pending_seed_);
+    pending_seed_.reset();
+  }
+}
+
+void Tracker::apply_seed(const TrackerSeed& seed) {
+  const double voxel = map_.voxel_size();
+  for (const SeedKeyframe& k : seed.keyframes) {
+    if (std::abs(k.voxel_size - voxel) > 1e-6 * voxel) {
+      ++seed_skipped_;
+      continue;
+    }
+    map_.add_distributions(k.distributions, k.pose);
+    last_keyframe_ = k.pose;
+    ++seed_used_;
+  }
+  if (!map_.empty())
+    search_ = make_correspondence_search(config_.registration.correspondence, map_);
+  // The previous frame's pose is the one `velocity` leads from to the prediction.
+  velocity_ = seed.velocity;
+  pose_ = seed.predicted * seed.velocity.inverse();
+  if (seed_used_ == 0) last_keyframe_ = pose_;
+  // Counted as two frames: registration (frames_ > 0) and deskew's first pass (frames_ >= 2
+  // with an interval) use the seed's map and motion; without a known motion, as one frame.
+  frames_ = seed.interval_s > 0.0 ? 2 : 1;
+  last_interval_ = seed.interval_s;
+}
+
+FrameResult Tracker::process(const PointCloud& raw) {
+  prepare_first_scan(raw);
   FrameResult frame;
   const PointCloud& scan = without_self_hits(raw, frame.self_hits);
   const Eigen::Isometry3d predicted = pose_ * velocity_;

@@ -32,6 +32,7 @@ const std::vector<float>* Tracker::point_times(const PointCloud& scan) {
 FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) {
   const DeskewConfig& d = config_.deskew;
   if (!d.enabled) return process(scan);
+  prepare_first_scan(scan);
   const double interval = interval_to(timing);
   if (const auto why = point_times_error(scan)) throw std::invalid_argument("Tracker: " + *why);
   const std::vector<float>* times = point_times(scan);

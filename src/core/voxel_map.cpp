@@ -62,6 +62,33 @@ void VoxelMap::add_keyframe(const GridVoxels& voxels, const Eigen::Isometry3d& p
   rebuild_distributions();
 }
 
+void VoxelMap::add_distributions(const std::vector<Distribution>& distributions,
+                                 const Eigen::Isometry3d& pose) {
+  const Eigen::Matrix3d r = pose.linear();
+  const Eigen::Vector3d t = pose.translation();
+  const double size = voxels_.voxel_size;
+  const double inv_size = 1.0 / size;
+  Cells& c = *cells_;
+  for (const Distribution& dist : distributions) {
+    if (dist.count < 1) continue;
+    const Eigen::Vector3d mean = r * dist.mean + t;
+    const VoxelIndex index = voxel_index(mean, inv_size);
+    const std::uint64_t key = pack_voxel(index);
+    const auto [it, inserted] = c.cell_of_key.try_emplace(key, static_cast<int>(c.cells.size()));
+    if (inserted) {
+      Cells::Cell& cell = c.cells.emplace_back();
+      cell.key = key;
+      cell.moments.origin = (index.cast<double>() + Eigen::Vector3d::Constant(0.5)) * size;
+    }
+    Cells::Cell& cell = c.cells[it->second];
+    cell.moments.merge(VoxelMoments::of_distribution(mean, r * dist.cov * r.transpose(), dist.count,
+                                                     cell.moments.origin));
+    cell.dirty = true;
+  }
+  drop_far_cells(t);
+  rebuild_distributions();
+}
+
 void VoxelMap::merge_grid_voxels(const GridVoxels& voxels, const Eigen::Isometry3d& pose) {
   const Eigen::Isometry3d correction = pose * voxels.grid_pose.inverse();
   const Eigen::Matrix3d r = correction.linear();

@@ -89,6 +89,9 @@ void validate(const DaemonConfig& config) {
   if (!(sharding.startup_wait_s >= 0.0)) throw ConfigError("sharding.startup_wait_s: must be >= 0");
   if (!(sharding.max_extrapolation_s >= 0.0))
     throw ConfigError("sharding.max_extrapolation_s: must be >= 0");
+  if (sharding.seed_keyframes < 0 || sharding.seed_keyframes > 1000)
+    throw ConfigError("sharding.seed_keyframes: must be in [0, 1000]");
+  if (!(sharding.seed_max_age_s > 0.0)) throw ConfigError("sharding.seed_max_age_s: must be > 0");
 }
 
 std::string resolved_member_id(const DaemonConfig& config) {

@@ -47,6 +47,14 @@ void StreamProcessor::process(Frame& frame) {
   const std::optional<Stamp> previous_stamp = last_stamp_;
   if (last_stamp_ && !(*last_stamp_ < frame.stamp)) tracker_->restart_clock();
   last_stamp_ = frame.stamp;
+  if (seed_ && !origin_ && !continued_ && !seed_->map_keyframes.empty()) {
+    // Taken over with the old owner's last map patches: the tracker continues in the stream's
+    // own frame from them (stream_handover.hpp), no origin is applied.
+    tracker_->continue_from(
+        tracker_seed(*seed_, frame.stamp, max_extrapolation_s_, config_.extrinsic));
+    continued_ = true;
+    seed_->map_keyframes.clear();
+  }
   const double cpu_before = thread_cpu_seconds();
   const FrameResult result = tracker_->process(frame.cloud, SweepTiming{frame.stamp});
   stats_.record_tracking_cpu(thread_cpu_seconds() - cpu_before);
@@ -58,7 +66,8 @@ void StreamProcessor::process(Frame& frame) {
   Matrix6d covariance = has_extrinsic_
                             ? transform_left_covariance(result.covariance, config_.extrinsic)
                             : result.covariance;
-  if (seed_ && !origin_) origin_ = handover_origin(*seed_, frame.stamp, max_extrapolation_s_);
+  if (seed_ && !origin_ && !continued_)
+    origin_ = handover_origin(*seed_, frame.stamp, max_extrapolation_s_);
   if (origin_) {
     pose = *origin_ * pose;
     covariance = transform_left_covariance(covariance, *origin_);

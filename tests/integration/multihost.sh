@@ -20,8 +20,9 @@
 #             <= 5 s). Checked: both streams' odometry continues to the end, the aggregator
 #             stores one chain per stream with no duplicate keyframe id, the stream that stayed
 #             has its odometry ATE within ATE_BOUND (1.0 m, the demo's default bound); the moved
-#             stream's ATE is printed (moved_stream_ate_m in the JSON line; MOVED_ATE_BOUND
-#             enforces a bound).
+#             stream's ATE is printed (moved_stream_ate_m in the JSON line) and bounded by
+#             MOVED_ATE_BOUND (default 1.0 m, the demo's): the new owner continues against the
+#             stream's last map patches (sharding.seed_keyframes).
 #   linkcut   one daemon (vehicle host) and the aggregator: the aggregator host's link is cut
 #             (ip link set down on its bridge port) for OUTAGE_S (default 5) seconds during
 #             ingest, then healed; then the same link gets netem loss 10 % and 100 ms delay for
@@ -416,15 +417,15 @@ $sharding" > "$dir/daemon_b.yaml"
   [ "$streams_stored" -eq ${#streams[@]} ] || fail "failover: $streams_stored chains stored"
   # The stream that stayed must be unaffected (ATE_BOUND, the demo's default 1.0 m); the moved
   # one's ATE is measured and reported (the constant-velocity extrapolation over the gap gives
-  # its heading error), enforced only with MOVED_ATE_BOUND.
+  # its heading error without the map patches' seed), bounded by MOVED_ATE_BOUND (1.0 m).
   local s2 ate
   for s2 in "${streams[@]}"; do
     ate=$(ate_of "$dir" "$s2")
     if [ "$s2" = "$moved" ]; then
       echo "  $s2 (moved) odometry ATE across the failover: $ate m"
       result[moved_stream_ate_m]=$ate
-      [ -z "${MOVED_ATE_BOUND:-}" ] || awk -v a="$ate" -v b="$MOVED_ATE_BOUND" 'BEGIN {exit !(a != "" && a <= b)}' ||
-        fail "failover: moved stream's ATE $ate m above $MOVED_ATE_BOUND m"
+      awk -v a="$ate" -v b="${MOVED_ATE_BOUND:-1.0}" 'BEGIN {exit !(a != "" && a <= b)}' ||
+        fail "failover: moved stream's ATE $ate m above ${MOVED_ATE_BOUND:-1.0} m"
     else
       echo "  $s2 (stayed) odometry ATE: $ate m (bound ${ATE_BOUND:-1.0})"
       awk -v a="$ate" -v b="${ATE_BOUND:-1.0}" 'BEGIN {exit !(a != "" && a <= b)}' ||

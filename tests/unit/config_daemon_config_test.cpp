@@ -345,6 +345,12 @@ TEST(DaemonConfig, ShardingAndMemberId) {
   EXPECT_EQ(litamin2::daemon::resolved_member_id(c), "host-2");
   EXPECT_EQ(c.sharding.startup_wait_s, 1.5);
   EXPECT_EQ(c.sharding.max_extrapolation_s, 4.0);
+  EXPECT_EQ(defaults.sharding.seed_keyframes, 10);
+  EXPECT_EQ(defaults.sharding.seed_max_age_s, 10.0);
+  const DaemonConfig seeded =
+      parse("discovery: {enabled: true}\nsharding: {seed_keyframes: 3, seed_max_age_s: 2.5}\n");
+  EXPECT_EQ(seeded.sharding.seed_keyframes, 3);
+  EXPECT_EQ(seeded.sharding.seed_max_age_s, 2.5);
 }
 
 TEST(DaemonConfig, ShardingErrors) {
@@ -358,4 +364,7 @@ TEST(DaemonConfig, ShardingErrors) {
   EXPECT_EQ(error_of("sharding: {enabled: true, startup_wait_s: -1}"),
             "sharding.startup_wait_s: -1 is out of range [0, 600]");
   EXPECT_EQ(error_of("sharding: {enabeld: true}"), "sharding.enabeld: unknown key");
+  EXPECT_EQ(error_of("sharding: {seed_keyframes: -1}"),
+            "sharding.seed_keyframes: -1 is out of range [0, 1000]");
+  EXPECT_EQ(error_of("sharding: {seed_max_age_s: 0}"), "sharding.seed_max_age_s: must be > 0");
 }

@@ -83,6 +83,8 @@ TEST(ConfigShippedDefaults, DaemonDdsOnlyConfigBehavesAsTheShippedFile) {
   EXPECT_EQ(shipped.sharding.enabled, minimal.sharding.enabled);
   EXPECT_EQ(shipped.sharding.startup_wait_s, minimal.sharding.startup_wait_s);
   EXPECT_EQ(shipped.sharding.max_extrapolation_s, minimal.sharding.max_extrapolation_s);
+  EXPECT_EQ(shipped.sharding.seed_keyframes, minimal.sharding.seed_keyframes);
+  EXPECT_EQ(shipped.sharding.seed_max_age_s, minimal.sharding.seed_max_age_s);
   EXPECT_EQ(tracker_config_to_yaml(shipped.tracker), tracker_config_to_yaml(minimal.tracker));
   EXPECT_EQ(shipped.threads, minimal.threads);
   EXPECT_EQ(shipped.queue_depth, minimal.queue_depth);

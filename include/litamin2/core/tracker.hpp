@@ -8,6 +8,7 @@
 #include "litamin2/core/scan_filter.hpp"
 #include "litamin2/core/stamp.hpp"
 #include "litamin2/core/tracker_config.hpp"
+#include "litamin2/core/tracker_seed.hpp"
 #include "litamin2/core/voxel_map.hpp"
 #include "litamin2/core/voxelizer.hpp"
 
@@ -94,6 +95,16 @@ class Tracker {
   /// publisher's clock); the motion is kept. The first scan after it is deskewed with the
   /// predicted motion only.
   void restart_clock() { has_stamp_ = false; }
+  /// Continues another tracker's stream (tracker_seed.hpp): before the first scan only (throws
+  /// std::logic_error after). The seed is applied when the first scan comes, once `sensor:
+  /// auto` has chosen the preset (and so the voxel size): the map is built from the seed's
+  /// keyframes of the map's voxel size (VoxelMap::add_distributions), the first scan is
+  /// registered to it from `predicted`, and the constant-velocity model and deskew's first
+  /// pass start from `velocity`.
+  void continue_from(TrackerSeed seed);
+  /// Seed keyframes used / not used (other voxel size) when the seed was applied.
+  std::size_t seed_keyframes_used() const { return seed_used_; }
+  std::size_t seed_keyframes_skipped() const { return seed_skipped_; }
 
   /// The map of distributions the next scan is registered to.
   const VoxelMap& map() const { return map_; }
@@ -115,6 +126,9 @@ class Tracker {
   /// Checks that `timing` follows the last stamp; returns the interval since, seconds (0 for
   /// the first).
   double interval_to(const SweepTiming& timing) const;
+  /// Before the first scan: applies `sensor: auto`'s preset, then the pending seed (if any).
+  void prepare_first_scan(const PointCloud& raw);
+  void apply_seed(const TrackerSeed& seed);
   /// Replaces the map (the first scan alone) by the first scan deskewed with `twist`.
   void rebuild_first_keyframe(const Twist& twist);
 
@@ -129,6 +143,11 @@ class Tracker {
   Eigen::Isometry3d velocity_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d last_keyframe_ = Eigen::Isometry3d::Identity();
   std::size_t frames_ = 0;
+  /// continue_from()'s seed until the first scan; whether the first scan was prepared.
+  std::unique_ptr<TrackerSeed> pending_seed_;
+  bool prepared_ = false;
+  std::size_t seed_used_ = 0;
+  std::size_t seed_skipped_ = 0;
   /// Running typical inlier share of registered frames (RecoveryConfig), negative before any.
   double typical_share_ = -1.0;
   /// Deskew state (tracker_timing.cpp): the last stamp, the interval before it (seconds, 0

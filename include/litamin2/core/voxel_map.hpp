@@ -40,6 +40,15 @@ class VoxelMap {
   /// A keyframe's update: insert(voxels, pose) then remove_far(pose.translation()), with the
   /// distributions rebuilt once instead of twice (same result).
   void add_keyframe(const GridVoxels& voxels, const Eigen::Isometry3d& pose);
+  /// Merges a keyframe known only by its distributions (a map patch: core/keyframe.hpp), taken
+  /// in the frame that `pose` moves to the map's: each distribution (mean m, covariance C, n
+  /// points) becomes the moments of n points with mean R m + t and covariance R C R^T
+  /// (VoxelMoments::of_distribution) merged into the voxel holding the moved mean, then the far
+  /// voxels are dropped as in add_keyframe. C is the distribution's lightly regularised
+  /// covariance (Distribution::cov), so a flat voxel comes back a little thicker than its
+  /// points were. Distributions with count < 1 are skipped.
+  void add_distributions(const std::vector<Distribution>& distributions,
+                         const Eigen::Isometry3d& pose);
 
   /// Distributions of the voxels with enough points, world frame.
   const std::vector<Distribution>& distributions() const { return distributions_; }

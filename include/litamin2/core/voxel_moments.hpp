@@ -59,6 +59,22 @@ struct VoxelMoments {
     return out;
   }
 
+  /// Moments of `dist.count` points with mean `mean` and maximum-likelihood covariance `cov`,
+  /// relative to `origin` (to_distribution's inverse, before regularisation): with
+  /// d = mean - origin, sum = n d, S = n (cov + d d^T).
+  static VoxelMoments of_distribution(const Eigen::Vector3d& mean, const Eigen::Matrix3d& cov,
+                                      int count, const Eigen::Vector3d& origin) {
+    VoxelMoments out;
+    out.origin = origin;
+    out.count = count;
+    const double n = static_cast<double>(count);
+    const Eigen::Vector3d d = mean - origin;
+    out.sum = n * d;
+    const Eigen::Matrix3d s = n * (cov + d * d.transpose());
+    out.sum_sq << s(0, 0), s(0, 1), s(0, 2), s(1, 1), s(1, 2), s(2, 2);
+    return out;
+  }
+
   /// The sum of (p - origin)(p - origin)^T as a matrix.
   Eigen::Matrix3d second_moment() const {
     Eigen::Matrix3d m;

@@ -90,6 +90,14 @@ struct ShardingConfig {
   /// the first scan here (constant velocity), when the gap is at most this many seconds;
   /// beyond, from the last pose as it is.
   double max_extrapolation_s = 10.0;
+  /// A stream that moves here continues against the map of its last this many map patches
+  /// (stream_handover.hpp) instead of starting a new map at the extrapolated pose; 0: never.
+  /// Every sharded daemon keeps up to this many patches of each known stream (memory: this
+  /// times a patch's size, ~40 bytes a distribution, per stream).
+  int seed_keyframes = 10;
+  /// Patches whose stamp is more than this many seconds before the stream's last odometry are
+  /// not used (a stream that stood still or lost its keyframes for longer starts a new map).
+  double seed_max_age_s = 10.0;
 };
 
 /// Bounds on what a client may send (docs/security.md, "Validation").

@@ -22,7 +22,8 @@ class StreamProcessor {
   /// outlive the processor.
   StreamProcessor(StreamConfig config, ResultSink& sink, StreamStats& stats);
   /// A stream taken over from another daemon (stream_handover.hpp): outputs in the seed's
-  /// odometry frame, from the origin at the first frame, keyframe ids from the seed's.
+  /// odometry frame, keyframe ids from the seed's; the tracker continues from the seed's map
+  /// keyframes if it has any, else its outputs are moved by the origin at the first frame.
   StreamProcessor(StreamConfig config, ResultSink& sink, StreamStats& stats, HandoverSeed seed,
                   double max_extrapolation_s);
 
@@ -33,8 +34,11 @@ class StreamProcessor {
   const Tracker& tracker() const { return *tracker_; }
   /// The id the next keyframe gets.
   std::uint64_t keyframes() const { return keyframes_; }
-  /// The handover origin in use (after the first frame of a taken-over stream).
+  /// The handover origin in use (after the first frame of a stream taken over without map
+  /// patches).
   const std::optional<Eigen::Isometry3d>& origin() const { return origin_; }
+  /// The stream was taken over with map patches: its tracker continues from them.
+  bool continued() const { return continued_; }
 
  private:
   StreamConfig config_;
@@ -48,6 +52,7 @@ class StreamProcessor {
   std::optional<HandoverSeed> seed_;
   double max_extrapolation_s_ = 0.0;
   std::optional<Eigen::Isometry3d> origin_;
+  bool continued_ = false;
   /// The last frame's stamp (deskew's clock, Tracker::restart_clock).
   std::optional<Stamp> last_stamp_;
   /// The last frame's published (base) pose, for the twist.

@@ -133,6 +133,9 @@ DaemonNode::DaemonNode(DaemonConfig config) : config_(std::move(config)) {
   for (const StreamConfig& stream : config_.streams) add_stream(stream);
   if (membership_) {
     handover_.set_map_patches_topic(config_.outputs.map_patches_topic);
+    handover_.set_map_seed_limits(
+        MapSeedLimits{static_cast<std::size_t>(config_.sharding.seed_keyframes),
+                      config_.sharding.seed_max_age_s});
     // The patches are in one partition per stream: read them all.
     patch_ids_subscriber_ = participant_->create_subscriber(dds::every_stream_subscriber_qos());
     patch_ids_reader_ = patch_ids_subscriber_ ? patch_ids_subscriber_->create_datareader(
@@ -296,10 +299,15 @@ void DaemonNode::reshard(Clock::time_point now) {
         ++takeovers_;
         spdlog::info(
             "stream {}: tracked here from the last pose ({:.2f}, {:.2f}, {:.2f}) at {}.{:09d}, "
-            "keyframe ids from {}",
+            "keyframe ids from {}, map from {} patch(es){}",
             id, seed->pose.translation().x(), seed->pose.translation().y(),
             seed->pose.translation().z(), seed->stamp.nanoseconds / 1'000'000'000,
-            seed->stamp.nanoseconds % 1'000'000'000, seed->next_keyframe_id);
+            seed->stamp.nanoseconds % 1'000'000'000, seed->next_keyframe_id,
+            seed->map_keyframes.size(),
+            seed->map_keyframes.empty()
+                ? std::string()
+                : fmt::format(" (ids {}..{})", seed->map_keyframes.front().key.id,
+                              seed->map_keyframes.back().key.id));
       } else {
         spdlog::info("stream {}: tracked here (no earlier odometry seen)", id);
       }

@@ -1,7 +1,7 @@
 #include "litamin2/daemon/dds/handover_listener.hpp"
 
+#include "litamin2/dds/map_patch_conversion.hpp"
 #include "litamin2/dds/odometry_conversion.hpp"
-#include "litamin2/msg/MapPatch.h"
 #include "nav_msgs/msg/Odometry.h"
 
 #include <fastdds/dds/subscriber/DataReader.hpp>
@@ -23,6 +23,11 @@ void HandoverListener::add_stream(const std::string& stream, const std::string& 
 void HandoverListener::set_map_patches_topic(const std::string& topic) {
   std::lock_guard lock(mutex_);
   map_patches_topic_ = topic;
+}
+
+void HandoverListener::set_map_seed_limits(const MapSeedLimits& limits) {
+  std::lock_guard lock(mutex_);
+  seed_limits_ = limits;
 }
 
 void HandoverListener::on_data_available(fdds::DataReader* reader) {
@@ -71,7 +76,15 @@ void HandoverListener::on_odometry(fdds::DataReader* reader, const std::string& 
     }
     Known& known = streams_[stream];
     // Keep the newest: after a handover both daemons may publish for a moment.
-    if (!known.last || known.last->stamp < seed.stamp) known.last = seed;
+    if (!known.last || known.last->stamp < seed.stamp) {
+      // The frame interval the twist spans: the gap to the previous message, if one frame's.
+      if (known.last) {
+        const double gap =
+            static_cast<double>(seed.stamp.nanoseconds - known.last->stamp.nanoseconds) * 1e-9;
+        seed.interval_s = gap <= 1.0 ? gap : 0.0;
+      }
+      known.last = seed;
+    }
   }
 }
 
@@ -85,6 +98,9 @@ void HandoverListener::on_map_patches(fdds::DataReader* reader) {
     if (it == streams_.end()) continue;  // a stream this daemon does not know (yet)
     it->second.last_keyframe_id =
         std::max(it->second.last_keyframe_id.value_or(0), msg.keyframe_id());
+    if (seed_limits_.keyframes == 0) continue;
+    it->second.patches.push_back(msg);
+    while (it->second.patches.size() > seed_limits_.keyframes) it->second.patches.pop_front();
   }
 }
 
@@ -94,6 +110,16 @@ std::optional<HandoverSeed> HandoverListener::seed(const std::string& stream) co
   if (it == streams_.end() || !it->second.last) return std::nullopt;
   HandoverSeed seed = *it->second.last;
   seed.next_keyframe_id = it->second.last_keyframe_id ? *it->second.last_keyframe_id + 1 : 0;
+  std::vector<Keyframe> candidates;
+  for (const litamin2::msg::MapPatch& patch : it->second.patches) {
+    dds::PatchConversion c = dds::from_map_patch(patch);
+    if (!c.ok()) {
+      ++rejected_;
+      continue;
+    }
+    candidates.push_back(std::move(c.keyframe));
+  }
+  seed.map_keyframes = select_map_seed(std::move(candidates), seed.stamp, seed_limits_);
   return seed;
 }
 
