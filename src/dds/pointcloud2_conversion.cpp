@@ -130,6 +130,13 @@ struct FieldSpec {
   std::uint8_t datatype = 0;
 };
 
+/// The message's point data: its data() or, when converting from a serialised payload, the
+/// bytes of the data sequence in that payload.
+struct PointBytes {
+  const std::uint8_t* data;
+  std::size_t size;
+};
+
 CloudError fail(CloudConversion& out, CloudError error, std::string message) {
   out.error = error;
   out.message = std::move(message);
@@ -229,7 +236,7 @@ CloudError find_fields(const sensor_msgs::msg::PointCloud2& msg, std::array<Fiel
 
 /// Checks the message's extent: rows of at least width * point_step bytes, exactly height rows
 /// of data, at most options.max_points points.
-CloudError check_extent(const sensor_msgs::msg::PointCloud2& msg,
+CloudError check_extent(const sensor_msgs::msg::PointCloud2& msg, PointBytes bytes,
                         const CloudConversionOptions& options, CloudConversion& out) {
   const std::uint64_t width = msg.width();
   const std::uint64_t height = msg.height();
@@ -242,9 +249,9 @@ CloudError check_extent(const sensor_msgs::msg::PointCloud2& msg,
                     " * point_step " + std::to_string(point_step));
   }
   const std::uint64_t expected = row_step * height;
-  if (static_cast<std::uint64_t>(msg.data().size()) != expected) {
+  if (static_cast<std::uint64_t>(bytes.size) != expected) {
     return fail(out, CloudError::kDataSizeMismatch,
-                "data has " + std::to_string(msg.data().size()) + " bytes, row_step " +
+                "data has " + std::to_string(bytes.size) + " bytes, row_step " +
                     std::to_string(row_step) + " * height " + std::to_string(height) + " = " +
                     std::to_string(expected));
   }
@@ -342,15 +349,15 @@ CloudError convert_times(const sensor_msgs::msg::PointCloud2& msg, const FieldSp
 
 /// The common case (native float32 x, y, z; intensity not wanted): written in place, with no
 /// per-point capacity checks or datatype switches.
-void read_float_xyz(const sensor_msgs::msg::PointCloud2& msg, const std::array<FieldSpec, 4>& specs,
-                    CloudConversion& out) {
+void read_float_xyz(const sensor_msgs::msg::PointCloud2& msg, PointBytes bytes,
+                    const std::array<FieldSpec, 4>& specs, CloudConversion& out) {
   const std::uint64_t width = msg.width(), height = msg.height();
   const std::uint64_t point_step = msg.point_step(), row_step = msg.row_step();
   auto& points = out.cloud.points;
   points.resize(static_cast<std::size_t>(width * height));
   Eigen::Vector3f* next = points.data();
   const std::size_t ox = specs[0].offset, oy = specs[1].offset, oz = specs[2].offset;
-  const std::uint8_t* data = msg.data().data();
+  const std::uint8_t* data = bytes.data;
   for (std::uint64_t row = 0; row < height; ++row) {
     const std::uint8_t* p = data + row * row_step;
     for (std::uint64_t col = 0; col < width; ++col, p += point_step) {
@@ -372,7 +379,7 @@ void read_float_xyz(const sensor_msgs::msg::PointCloud2& msg, const std::array<F
 /// Any layout: float32 or float64 coordinates in either byte order, and the intensity if
 /// `with_intensity` (any numeric type; a non-finite one rejects the message), and the raw
 /// time values into `raw_times` if `time`.
-CloudError read_any_layout(const sensor_msgs::msg::PointCloud2& msg,
+CloudError read_any_layout(const sensor_msgs::msg::PointCloud2& msg, PointBytes bytes,
                            const std::array<FieldSpec, 4>& specs, bool with_intensity,
                            const FieldSpec* time, std::vector<double>& raw_times,
                            CloudConversion& out) {
@@ -386,7 +393,7 @@ CloudError read_any_layout(const sensor_msgs::msg::PointCloud2& msg,
   points.reserve(static_cast<std::size_t>(width * height));
   if (with_intensity) intensities.reserve(static_cast<std::size_t>(width * height));
   if (time) raw_times.reserve(static_cast<std::size_t>(width * height));
-  const std::uint8_t* data = msg.data().data();
+  const std::uint8_t* data = bytes.data;
   for (std::uint64_t row = 0; row < height; ++row) {
     const std::uint8_t* row_ptr = data + row * row_step;
     for (std::uint64_t col = 0; col < width; ++col) {
@@ -424,6 +431,13 @@ CloudError read_any_layout(const sensor_msgs::msg::PointCloud2& msg,
 
 CloudError from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
                             const CloudConversionOptions& options, CloudConversion& out) {
+  return from_pointcloud2(msg, msg.data().data(), msg.data().size(), options, out);
+}
+
+CloudError from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg, const std::uint8_t* data,
+                            std::size_t data_size, const CloudConversionOptions& options,
+                            CloudConversion& out) {
+  const PointBytes bytes{data, data_size};
   out.error = CloudError::kNone;
   out.message.clear();
   out.cloud.points.clear();
@@ -443,19 +457,19 @@ CloudError from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
   FieldSpec time{""};
   if (options.read_time && find_time_field(msg, time, out) != CloudError::kNone) return out.error;
   if (time.found) out.time_field = time.name;
-  if (check_extent(msg, options, out) != CloudError::kNone) return out.error;
+  if (check_extent(msg, bytes, options, out) != CloudError::kNone) return out.error;
   if (out.total_points == 0) return CloudError::kNone;
   const bool with_intensity = options.read_intensity && specs[3].found;
   const bool native_float = msg.is_bigendian() == host_is_big_endian() &&
                             specs[0].datatype == kFloat32 && specs[1].datatype == kFloat32 &&
                             specs[2].datatype == kFloat32;
   if (native_float && !with_intensity && !time.found) {
-    read_float_xyz(msg, specs, out);
+    read_float_xyz(msg, bytes, specs, out);
     return CloudError::kNone;
   }
   std::vector<double> raw_times;
-  if (read_any_layout(msg, specs, with_intensity, time.found ? &time : nullptr, raw_times, out) !=
-      CloudError::kNone)
+  if (read_any_layout(msg, bytes, specs, with_intensity, time.found ? &time : nullptr, raw_times,
+                      out) != CloudError::kNone)
     return out.error;
   if (time.found) return convert_times(msg, time, raw_times, out);
   return CloudError::kNone;

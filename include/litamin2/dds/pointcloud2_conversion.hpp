@@ -108,6 +108,14 @@ CloudConversion from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
 CloudError from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg,
                             const CloudConversionOptions& options, CloudConversion& out);
 
+/// Same as above with the point data given apart: `msg.data()` is ignored and the `data_size`
+/// bytes at `data` are read in its place, with the same checks (data_size must be row_step *
+/// height). PointCloud2ScanType uses it to convert the data sequence where it lies in the
+/// serialised payload, without copying it into a message first.
+CloudError from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg, const std::uint8_t* data,
+                            std::size_t data_size, const CloudConversionOptions& options,
+                            CloudConversion& out);
+
 /// How to_pointcloud2 writes a cloud's per-point times, as one vendor's driver does.
 enum class TimeLayout {
   /// `time` FLOAT32 seconds relative to the stamp (Velodyne): exact for the cloud's floats.

@@ -9,6 +9,7 @@
 #include "litamin2/daemon/stream_processor.hpp"
 #include "litamin2/dds/checked_type.hpp"
 #include "litamin2/dds/participant_setup.hpp"
+#include "litamin2/dds/pointcloud2_scan_type.hpp"
 #include "litamin2/dds/qos.hpp"
 #include "litamin2/dds/stream_partition.hpp"
 #include "litamin2/dds/time_conversion.hpp"
@@ -89,9 +90,9 @@ DaemonNode::DaemonNode(DaemonConfig config) : config_(std::move(config)) {
     own_participant_ = guid.str();
   }
 
-  // Received scans are deserialised by a CheckedType: malformed CDR is counted, not fatal.
-  points_type_ = dds::register_type(
-      participant_.get(), new dds::CheckedType<sensor_msgs::msg::PointCloud2PubSubType>());
+  // Received scans are converted while they are deserialised (PointCloud2ScanType): malformed
+  // CDR is counted, not fatal, as with CheckedType.
+  points_type_ = dds::register_type(participant_.get(), new dds::PointCloud2ScanType());
   odom_type_ = dds::register_type(participant_.get(), new nav_msgs::msg::OdometryPubSubType());
   map_patch_type_ = dds::register_type(participant_.get(), new litamin2::msg::MapPatchPubSubType());
   status_type_ =

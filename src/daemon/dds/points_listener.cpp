@@ -1,8 +1,8 @@
 #include "litamin2/daemon/dds/points_listener.hpp"
 
 #include "litamin2/dds/checked_type.hpp"
+#include "litamin2/dds/pointcloud2_scan_type.hpp"
 #include "litamin2/dds/time_conversion.hpp"
-#include "sensor_msgs/msg/PointCloud2.h"
 
 #include <spdlog/spdlog.h>
 #include <fastdds/dds/subscriber/DataReader.hpp>
@@ -22,17 +22,21 @@ PointsListener::PointsListener(std::string stream, StreamScheduler& scheduler,
       options_(options) {}
 
 void PointsListener::on_data_available(fdds::DataReader* reader) {
-  sensor_msgs::msg::PointCloud2 msg;
+  // The reader's type is a dds::PointCloud2ScanType: take_next_sample deserialises the
+  // message's members and converts its points straight from Fast DDS's copy of the payload.
+  dds::ReceivedPointCloud2 scan;
+  scan.options = options_;
+  const sensor_msgs::msg::PointCloud2& msg = scan.meta;
+  dds::CloudConversion& conversion = scan.conversion;
   fdds::SampleInfo info;
-  dds::CloudConversion conversion;
   auto log_bad = [&](const char* what, const std::string& detail) {
     if (const auto suppressed = bad_message_log_.allow())
       spdlog::warn("stream {}: dropped a bad PointCloud2 ({}: {}){}", stream_, what, detail,
                    *suppressed ? fmt::format(" and {} more since the last report", *suppressed)
                                : std::string());
   };
-  // The reader's type is a dds::CheckedType: Fast DDS drops (inside take_next_sample) a sample
-  // it could not deserialise; count those.
+  // Fast DDS drops (inside take_next_sample) a sample the type could not deserialise; count
+  // those.
   dds::take_sample_failures();
   const auto count_failures = [&] {
     const dds::SampleFailures failed = dds::take_sample_failures();
@@ -42,12 +46,12 @@ void PointsListener::on_data_available(fdds::DataReader* reader) {
     log_bad(dds::to_string(failed.last_error), failed.last_message);
   };
   for (;;) {
-    const bool taken = reader->take_next_sample(&msg, &info) == ReturnCode_t::RETCODE_OK;
+    const bool taken = reader->take_next_sample(&scan, &info) == ReturnCode_t::RETCODE_OK;
     count_failures();
     if (!taken) break;
     if (!info.valid_data) continue;
     const auto arrival = std::chrono::steady_clock::now();
-    if (dds::from_pointcloud2(msg, options_, conversion) != dds::CloudError::kNone) {
+    if (conversion.error != dds::CloudError::kNone) {
       stats_.record_bad_message(dds::to_string(conversion.error));
       log_bad(dds::to_string(conversion.error), conversion.message);
       continue;
