@@ -10,6 +10,8 @@
 #include <spdlog/spdlog.h>
 #include <yaml-cpp/yaml.h>
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -24,7 +26,11 @@ namespace {
 class ConfigReloadTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    path_ = testing::TempDir() + "config_reload_test.yaml";
+    // One file per test and process: ctest runs this binary's tests in parallel processes, and
+    // two of them writing one file made each read the other's config.
+    path_ = testing::TempDir() + "config_reload_test_" +
+            testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
+            std::to_string(::getpid()) + ".yaml";
     service::setup_logging("info");
   }
   void TearDown() override { std::remove(path_.c_str()); }
