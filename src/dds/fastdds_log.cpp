@@ -10,6 +10,7 @@
 #include <mutex>
 
 #include "litamin2/dds/participant_factory.hpp"
+#include "litamin2/dds/shm_warning_filter.hpp"
 
 namespace litamin2::dds {
 
@@ -27,12 +28,36 @@ class SpdlogConsumer : public fdds::LogConsumer {
         spdlog::error("fastdds [{}] {}", category, entry.message);
         break;
       case fdds::Log::Kind::Warning:
-        spdlog::warn("fastdds [{}] {}", category, entry.message);
+        switch (shm_filter().classify(category, entry.message)) {
+          case ShmWarningFilter::Verdict::kNotShmInvalidation:
+            spdlog::warn("fastdds [{}] {}", category, entry.message);
+            break;
+          case ShmWarningFilter::Verdict::kStartupArtefact:
+            spdlog::debug(
+                "fastdds [{}] {} (the SHM transport's start-up buffer reclaimed at the "
+                "first send: nothing lost; docs/deploy.md)",
+                category, entry.message);
+            break;
+          case ShmWarningFilter::Verdict::kSegmentOverflow:
+            spdlog::warn(
+                "fastdds [{}] {} (a sender's SHM segment is full of buffers not yet "
+                "taken: readers lose those messages; raise its segment size, "
+                "docs/deploy.md)",
+                category, entry.message);
+            break;
+        }
         break;
       default:
         spdlog::debug("fastdds [{}] {}", category, entry.message);
         break;
     }
+  }
+
+ private:
+  /// One per process, not per consumer: the start-up artefact happens once in a process.
+  static ShmWarningFilter& shm_filter() {
+    static ShmWarningFilter filter;
+    return filter;
   }
 };
 
