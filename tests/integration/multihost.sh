@@ -34,8 +34,11 @@
 #   dserver   (not in the default list: does not pass yet) the chain scenario with every
 #             participant a Discovery Server client of fast-discovery-server -i 0 (what
 #             `fastdds discovery` runs, fastdds-tools) on the aggregator host: no initial peers.
-#             Observed: the clients' announcements reach the server (tcpdump on 10.77.0.3:11811)
-#             but no client discovers another; not diagnosed yet.
+#             Found: as CLIENTs the daemon never discovered rt/<stream>/points (a client hears
+#             only of endpoints on topics it has endpoints on itself, and the daemon finds its
+#             streams from the publications); with the daemons' hosts SUPER_CLIENTs the daemon
+#             now matches both replay writers and the replay reports every scan acknowledged,
+#             but the daemon processes none (0 frames, 0 bad messages): not diagnosed yet.
 #
 # Ends by printing one JSON line with the issue's keys; a value not measured by the scenarios
 # run is null, with the reason in the log.
@@ -115,7 +118,14 @@ profile_xml() {  # profile_xml HOST [client] > FILE: simple discovery by unicast
   peers="<initialPeersList>$peers</initialPeersList>"
   if [ "${2:-}" = client ]; then
     peers=""
-    discovery="<discoveryProtocol>CLIENT</discoveryProtocol>
+    # A daemon discovers its streams from the publications on the domain (discovery.pattern),
+    # and a CLIENT hears from the server only of endpoints on topics it has endpoints on
+    # itself: it would never see rt/<stream>/points. The daemons' hosts are SUPER_CLIENTs
+    # (every discovery message the server has); the aggregator's host, whose topics are
+    # fixed, is a CLIENT.
+    local kind=CLIENT
+    [ "$1" = aggregator ] || kind=SUPER_CLIENT
+    discovery="<discoveryProtocol>$kind</discoveryProtocol>
             <discoveryServersList>
               <RemoteServer prefix=\"$ds_prefix\">
                 <metatrafficUnicastLocatorList>
