@@ -21,6 +21,21 @@ struct VoxelMap::Cells {
   /// Cells in insertion order (so iteration, and thus results, are deterministic).
   std::vector<Cell> cells;
   tsl::robin_map<std::uint64_t, int, VoxelKeyHash> cell_of_key;
+
+  /// The cell of voxel `index` (edge `voxel_size`), added empty (its moments' origin at the
+  /// voxel's centre) if it is not there yet; marked dirty, as the caller adds to it.
+  Cell& dirty_cell(const VoxelIndex& index, double voxel_size) {
+    const std::uint64_t key = pack_voxel(index);
+    const auto [it, inserted] = cell_of_key.try_emplace(key, static_cast<int>(cells.size()));
+    if (inserted) {
+      Cell& cell = cells.emplace_back();
+      cell.key = key;
+      cell.moments.origin = (index.cast<double>() + Eigen::Vector3d::Constant(0.5)) * voxel_size;
+    }
+    Cell& cell = cells[it->second];
+    cell.dirty = true;
+    return cell;
+  }
 };
 
 VoxelMap::VoxelMap(const VoxelizerConfig& voxels, const VoxelMapConfig& config)
@@ -32,17 +47,7 @@ VoxelMap& VoxelMap::operator=(VoxelMap&&) noexcept = default;
 void VoxelMap::insert(const PointCloud& scan, const Eigen::Isometry3d& pose) {
   Cells& c = *cells_;
   vote_points(scan, pose, voxels_, [&](const VoxelIndex& index) -> VoxelMoments& {
-    const std::uint64_t key = pack_voxel(index);
-    const auto [it, inserted] = c.cell_of_key.try_emplace(key, static_cast<int>(c.cells.size()));
-    if (inserted) {
-      Cells::Cell& cell = c.cells.emplace_back();
-      cell.key = key;
-      cell.moments.origin =
-          (index.cast<double>() + Eigen::Vector3d::Constant(0.5)) * voxels_.voxel_size;
-    }
-    Cells::Cell& cell = c.cells[it->second];
-    cell.dirty = true;
-    return cell.moments;
+    return c.dirty_cell(index, voxels_.voxel_size).moments;
   });
   rebuild_distributions();
 }
@@ -72,18 +77,9 @@ void VoxelMap::add_distributions(const std::vector<Distribution>& distributions,
   for (const Distribution& dist : distributions) {
     if (dist.count < 1) continue;
     const Eigen::Vector3d mean = r * dist.mean + t;
-    const VoxelIndex index = voxel_index(mean, inv_size);
-    const std::uint64_t key = pack_voxel(index);
-    const auto [it, inserted] = c.cell_of_key.try_emplace(key, static_cast<int>(c.cells.size()));
-    if (inserted) {
-      Cells::Cell& cell = c.cells.emplace_back();
-      cell.key = key;
-      cell.moments.origin = (index.cast<double>() + Eigen::Vector3d::Constant(0.5)) * size;
-    }
-    Cells::Cell& cell = c.cells[it->second];
+    Cells::Cell& cell = c.dirty_cell(voxel_index(mean, inv_size), size);
     cell.moments.merge(VoxelMoments::of_distribution(mean, r * dist.cov * r.transpose(), dist.count,
                                                      cell.moments.origin));
-    cell.dirty = true;
   }
   drop_far_cells(t);
   rebuild_distributions();
@@ -98,17 +94,8 @@ void VoxelMap::merge_grid_voxels(const GridVoxels& voxels, const Eigen::Isometry
   Cells& c = *cells_;
   for (const VoxelMoments& moments : voxels.moments) {
     const Eigen::Vector3d mean = moments.origin + moments.sum / moments.count;
-    const VoxelIndex index = voxel_index(r * mean + t, inv_size);
-    const std::uint64_t key = pack_voxel(index);
-    const auto [it, inserted] = c.cell_of_key.try_emplace(key, static_cast<int>(c.cells.size()));
-    if (inserted) {
-      Cells::Cell& cell = c.cells.emplace_back();
-      cell.key = key;
-      cell.moments.origin = (index.cast<double>() + Eigen::Vector3d::Constant(0.5)) * size;
-    }
-    Cells::Cell& cell = c.cells[it->second];
+    Cells::Cell& cell = c.dirty_cell(voxel_index(r * mean + t, inv_size), size);
     cell.moments.merge(moments.transformed(r, t, cell.moments.origin));
-    cell.dirty = true;
   }
 }
 
