@@ -7,6 +7,7 @@
 #include "litamin2/core/tracker.hpp"
 #include "litamin2/core/voxel_key.hpp"
 #include "litamin2/core/voxel_map.hpp"
+#include "support/s_curve_drive.hpp"
 #include "support/synthetic_scene.hpp"
 
 #include <gtest/gtest.h>
@@ -16,24 +17,11 @@
 namespace litamin2 {
 namespace {
 
-/// Sensor poses along a gentle S-curve, 0.8 m per frame (as core_tracker_test).
 std::vector<Eigen::Isometry3d> path(int frames) {
-  std::vector<Eigen::Isometry3d> poses;
-  double yaw = 0.0;
-  Eigen::Vector3d position(-20.0, 0.0, 0.0);
-  for (int i = 0; i < frames; ++i) {
-    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    pose.linear() = so3_exp(Eigen::Vector3d(0, 0, yaw));
-    pose.translation() = position;
-    poses.push_back(pose);
-    yaw += 0.01 * std::sin(i * 0.2);
-    position += pose.linear() * Eigen::Vector3d(0.8, 0.0, 0.0);
-  }
-  return poses;
+  return testing::s_curve_path(frames);
 }
-
 PointCloud scan_at(const Eigen::Isometry3d& pose, unsigned seed) {
-  return testing::transformed(testing::synthetic_scene(seed, 40000), pose.inverse());
+  return testing::scan_seen_from(pose, seed);
 }
 
 double translation_error(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {

@@ -3,6 +3,7 @@
 
 #include "litamin2/core/so3.hpp"
 #include "litamin2/core/tracker.hpp"
+#include "support/s_curve_drive.hpp"
 #include "support/synthetic_scene.hpp"
 
 #include <gtest/gtest.h>
@@ -14,25 +15,11 @@
 namespace litamin2 {
 namespace {
 
-/// Sensor poses along a gentle S-curve, 0.8 m per frame.
 std::vector<Eigen::Isometry3d> path(int frames) {
-  std::vector<Eigen::Isometry3d> poses;
-  double yaw = 0.0;
-  Eigen::Vector3d position(-20.0, 0.0, 0.0);
-  for (int i = 0; i < frames; ++i) {
-    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    pose.linear() = so3_exp(Eigen::Vector3d(0, 0, yaw));
-    pose.translation() = position;
-    poses.push_back(pose);
-    yaw += 0.01 * std::sin(i * 0.2);
-    position += pose.linear() * Eigen::Vector3d(0.8, 0.0, 0.0);
-  }
-  return poses;
+  return testing::s_curve_path(frames);
 }
-
-/// Scan i: the world seen from path pose i (an independent sampling each frame).
 PointCloud scan_at(const Eigen::Isometry3d& pose, unsigned seed) {
-  return testing::transformed(testing::synthetic_scene(seed, 40000), pose.inverse());
+  return testing::scan_seen_from(pose, seed);
 }
 
 std::vector<Eigen::Isometry3d> run(const std::vector<Eigen::Isometry3d>& truth, CostMode mode) {
