@@ -31,14 +31,14 @@
 #             shorter than outputs.map_patch_history), odometry messages the vehicle host got
 #             during the outage (the daemon keeps processing), the daemon's RSS growth over the
 #             outage.
-#   dserver   (not in the default list: does not pass yet) the chain scenario with every
-#             participant a Discovery Server client of fast-discovery-server -i 0 (what
-#             `fastdds discovery` runs, fastdds-tools) on the aggregator host: no initial peers.
-#             Found: as CLIENTs the daemon never discovered rt/<stream>/points (a client hears
-#             only of endpoints on topics it has endpoints on itself, and the daemon finds its
-#             streams from the publications); with the daemons' hosts SUPER_CLIENTs the daemon
-#             now matches both replay writers and the replay reports every scan acknowledged,
-#             but the daemon processes none (0 frames, 0 bad messages): not diagnosed yet.
+#   dserver   the chain scenario with discovery through a Discovery Server instead of unicast
+#             peers: fast-discovery-server (what `fastdds discovery` runs, fastdds-tools) on the
+#             aggregator host, with a profile bound to that host's address (server_xml). The
+#             daemons' hosts are SUPER_CLIENTs: a daemon finds its streams from the publications
+#             on the domain (discovery.pattern), and a CLIENT hears from the server only of
+#             endpoints on topics it has endpoints on itself, so it would never see
+#             rt/<stream>/points. The aggregator's host, whose topics are fixed, is a CLIENT.
+#             Checked as the chain: every odometry message and every keyframe arrives.
 #
 # Ends by printing one JSON line with the issue's keys; a value not measured by the scenarios
 # run is null, with the reason in the log.
@@ -53,7 +53,7 @@ probe="$build/tests/integration/daemon_probe"
 frames=${FRAMES:-120}
 rate=${RATE:-10}
 domain=${DOMAIN:-47}
-scenarios=${SCENARIOS:-chain failover linkcut}
+scenarios=${SCENARIOS:-chain failover linkcut dserver}
 streams=(vehicle_00 vehicle_01)
 tag="lm2mh$$"
 hosts=(vehicle daemon2 aggregator)
@@ -172,7 +172,46 @@ profile_xml() {  # profile_xml HOST [client] > FILE: simple discovery by unicast
 XML
 }
 
+server_xml() {  # server_xml > FILE: the Discovery Server's participant, on the aggregator
+  # host's address only. Without an interface whitelist Fast DDS's UDP transport rewrites a
+  # peer's locator on one of its own interfaces to 127.0.0.1, so the server answered the
+  # aggregator host's clients on 127.0.0.1, where they (bound to 10.77.0.3) never listen.
+  local own=${addr[aggregator]}
+  cat <<XML
+<?xml version="1.0" encoding="UTF-8" ?>
+<dds xmlns="http://www.eprosima.com/XMLSchemas/fastRTPS_Profiles">
+  <profiles>
+    <transport_descriptors>
+      <transport_descriptor>
+        <transport_id>udp_server</transport_id>
+        <type>UDPv4</type>
+        <interfaceWhiteList><address>$own</address></interfaceWhiteList>
+      </transport_descriptor>
+    </transport_descriptors>
+    <participant profile_name="discovery_server" is_default_profile="true">
+      <rtps>
+        <prefix>$ds_prefix</prefix>
+        <useBuiltinTransports>false</useBuiltinTransports>
+        <userTransports><transport_id>udp_server</transport_id></userTransports>
+        <builtin>
+          <discovery_config>
+            <discoveryProtocol>SERVER</discoveryProtocol>
+            <leaseDuration><sec>$lease_s</sec></leaseDuration>
+            <leaseAnnouncement><sec>0</sec><nanosec>$((announce_ms * 1000000))</nanosec></leaseAnnouncement>
+          </discovery_config>
+          <metatrafficUnicastLocatorList>
+            <locator><udpv4><address>$own</address><port>$ds_port</port></udpv4></locator>
+          </metatrafficUnicastLocatorList>
+        </builtin>
+      </rtps>
+    </participant>
+  </profiles>
+</dds>
+XML
+}
+
 cd "$work"
+server_xml > discovery_server.xml
 # "" : simple discovery (unicast peers); "_client": through the Discovery Server.
 xml_suffix=""
 for h in "${hosts[@]}"; do
@@ -528,8 +567,7 @@ scenario_dserver() {
   mkdir -p "$work/dserver"
   # fast-discovery-server itself (what the `fastdds discovery` wrapper runs), so that $! is the
   # server. It serves domain 0 only: the scenario's participants use domain 0 (private netns).
-  start aggregator "$work/dserver_server.log" fast-discovery-server -i 0 -l "${addr[aggregator]}" \
-    -p "$ds_port"
+  start aggregator "$work/dserver_server.log" fast-discovery-server -x "$work/discovery_server.xml"
   local server_pid=$last_pid
   sleep 1
   xml_suffix="_client"
