@@ -52,6 +52,7 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
     YamlSection ingest(root.child("ingest"), "ingest");
     ingest.read_range("queue_capacity", config.ingest.queue_capacity, 1, 1'000'000);
     ingest.read_range("max_batch", config.ingest.max_batch, 1, 100'000);
+    ingest.read("exclusive_odometry", config.ingest.exclusive_odometry);
     ingest.reject_unknown();
   }
 

@@ -144,6 +144,7 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
     sharding.read_range("max_extrapolation_s", config.sharding.max_extrapolation_s, 0.0, 600.0);
     sharding.read_range("seed_keyframes", config.sharding.seed_keyframes, 0, 1000);
     sharding.read_range("seed_max_age_s", config.sharding.seed_max_age_s, 0.0, 3600.0);
+    sharding.read_range("replicas", config.sharding.replicas, 1, 8);
     sharding.reject_unknown();
   }
 

@@ -92,6 +92,10 @@ void validate(const DaemonConfig& config) {
   if (sharding.seed_keyframes < 0 || sharding.seed_keyframes > 1000)
     throw ConfigError("sharding.seed_keyframes: must be in [0, 1000]");
   if (!(sharding.seed_max_age_s > 0.0)) throw ConfigError("sharding.seed_max_age_s: must be > 0");
+  if (sharding.replicas < 1 || sharding.replicas > 8)
+    throw ConfigError("sharding.replicas: must be in [1, 8]");
+  if (sharding.replicas > 1 && !sharding.enabled)
+    throw ConfigError("sharding.replicas: needs sharding.enabled (standbys follow the members)");
 }
 
 std::string resolved_member_id(const DaemonConfig& config) {

@@ -99,4 +99,8 @@ std::string Membership::owner(std::string_view stream) const {
   return *rendezvous_owner(live(), stream);
 }
 
+std::size_t Membership::rank(std::string_view stream) const {
+  return *rendezvous_rank(live(), self_, stream);  // self_ is always live
+}
+
 }  // namespace litamin2::daemon

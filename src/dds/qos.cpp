@@ -73,6 +73,19 @@ fdds::DataReaderQos odom_reader_qos(std::int32_t depth) {
   return qos;
 }
 
+fdds::DataWriterQos exclusive_odom_writer_qos(std::uint32_t strength, std::int32_t depth) {
+  fdds::DataWriterQos qos = odom_writer_qos(depth);
+  qos.ownership().kind = fdds::EXCLUSIVE_OWNERSHIP_QOS;
+  qos.ownership_strength().value = strength;
+  return qos;
+}
+
+fdds::DataReaderQos exclusive_odom_reader_qos(std::int32_t depth) {
+  fdds::DataReaderQos qos = odom_reader_qos(depth);
+  qos.ownership().kind = fdds::EXCLUSIVE_OWNERSHIP_QOS;
+  return qos;
+}
+
 fdds::DataWriterQos map_patches_writer_qos(std::int32_t history_per_stream) {
   fdds::DataWriterQos qos = fdds::DATAWRITER_QOS_DEFAULT;
   common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::TRANSIENT_LOCAL_DURABILITY_QOS,

@@ -45,7 +45,7 @@ TEST(AggregatorConfig, ReadsEverySection) {
 dds: {domain: 7, profile: shm}
 topics: {map_patches: rt/x/patches, keyframe_poses: rt/x/poses, map_summary: rt/x/sum, status: rt/x/st}
 store: {path: /tmp/a.db, synchronous_full: true}
-ingest: {queue_capacity: 10, max_batch: 3}
+ingest: {queue_capacity: 10, max_batch: 3, exclusive_odometry: true}
 publish: {poses_period_s: 0.5, summary_period_s: 2, summary_max_means: 0, status_period_s: 0.25}
 mapper: {map_voxel_size: 2.0, pose_graph: {max_iterations: 7}}
 watchdog: {enabled: false, stall_timeout_s: 5}
@@ -56,6 +56,7 @@ log_level: debug
   EXPECT_EQ(c.topics.keyframe_poses, "rt/x/poses");
   EXPECT_TRUE(c.store.synchronous_full);
   EXPECT_EQ(c.ingest.max_batch, 3);
+  EXPECT_TRUE(c.ingest.exclusive_odometry);
   EXPECT_EQ(c.publish.summary_max_means, 0);
   EXPECT_DOUBLE_EQ(c.mapper.map_voxel_size, 2.0);
   EXPECT_EQ(c.mapper.graph.max_iterations, 7);

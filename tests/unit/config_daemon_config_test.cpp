@@ -351,6 +351,10 @@ TEST(DaemonConfig, ShardingAndMemberId) {
       parse("discovery: {enabled: true}\nsharding: {seed_keyframes: 3, seed_max_age_s: 2.5}\n");
   EXPECT_EQ(seeded.sharding.seed_keyframes, 3);
   EXPECT_EQ(seeded.sharding.seed_max_age_s, 2.5);
+  EXPECT_EQ(defaults.sharding.replicas, 1);
+  const DaemonConfig standby =
+      parse("discovery: {enabled: true}\nsharding: {enabled: true, replicas: 2}\n");
+  EXPECT_EQ(standby.sharding.replicas, 2);
 }
 
 TEST(DaemonConfig, ShardingErrors) {
@@ -367,4 +371,7 @@ TEST(DaemonConfig, ShardingErrors) {
   EXPECT_EQ(error_of("sharding: {seed_keyframes: -1}"),
             "sharding.seed_keyframes: -1 is out of range [0, 1000]");
   EXPECT_EQ(error_of("sharding: {seed_max_age_s: 0}"), "sharding.seed_max_age_s: must be > 0");
+  EXPECT_EQ(error_of("sharding: {replicas: 0}"), "sharding.replicas: 0 is out of range [1, 8]");
+  EXPECT_EQ(error_of("discovery: {enabled: true}\nsharding: {replicas: 2}"),
+            "sharding.replicas: needs sharding.enabled (standbys follow the members)");
 }

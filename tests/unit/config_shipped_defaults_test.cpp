@@ -85,6 +85,7 @@ TEST(ConfigShippedDefaults, DaemonDdsOnlyConfigBehavesAsTheShippedFile) {
   EXPECT_EQ(shipped.sharding.max_extrapolation_s, minimal.sharding.max_extrapolation_s);
   EXPECT_EQ(shipped.sharding.seed_keyframes, minimal.sharding.seed_keyframes);
   EXPECT_EQ(shipped.sharding.seed_max_age_s, minimal.sharding.seed_max_age_s);
+  EXPECT_EQ(shipped.sharding.replicas, minimal.sharding.replicas);
   EXPECT_EQ(tracker_config_to_yaml(shipped.tracker), tracker_config_to_yaml(minimal.tracker));
   EXPECT_EQ(shipped.threads, minimal.threads);
   EXPECT_EQ(shipped.queue_depth, minimal.queue_depth);
@@ -124,6 +125,7 @@ TEST(ConfigShippedDefaults, AggregatorDdsOnlyConfigBehavesAsTheShippedFile) {
   EXPECT_EQ(shipped.store.distribution_cache_mb, minimal.store.distribution_cache_mb);
   EXPECT_EQ(shipped.ingest.queue_capacity, minimal.ingest.queue_capacity);
   EXPECT_EQ(shipped.ingest.max_batch, minimal.ingest.max_batch);
+  EXPECT_EQ(shipped.ingest.exclusive_odometry, minimal.ingest.exclusive_odometry);
   const PublishConfig &sp = shipped.publish, &mp = minimal.publish;
   EXPECT_EQ(sp.poses_period_s, mp.poses_period_s);
   EXPECT_EQ(sp.poses_chunk_keyframes, mp.poses_chunk_keyframes);

@@ -5,11 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <string>
 #include <vector>
 
 using litamin2::daemon::rendezvous_owner;
+using litamin2::daemon::rendezvous_rank;
 using litamin2::daemon::rendezvous_weight;
 
 namespace {
@@ -86,4 +88,39 @@ TEST(Rendezvous, AddingAMemberMovesStreamsOnlyToIt) {
   // About a third of the streams move to the new member.
   EXPECT_GT(moved, 240);
   EXPECT_LT(moved, 360);
+}
+
+TEST(Rendezvous, RanksFollowTheWeightsAndTheOwnerHasRankZero) {
+  const std::vector<std::string> members{"d1", "d2", "d3", "d4"};
+  for (const auto& s : streams(200)) {
+    std::vector<std::pair<std::uint64_t, std::string>> by_weight;
+    for (const auto& m : members) by_weight.emplace_back(rendezvous_weight(m, s), m);
+    std::sort(by_weight.begin(), by_weight.end(),
+              [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (std::size_t r = 0; r < by_weight.size(); ++r)
+      EXPECT_EQ(rendezvous_rank(members, by_weight[r].second, s), r) << s;
+    EXPECT_EQ(rendezvous_rank(members, *rendezvous_owner(members, s), s), 0u) << s;
+  }
+}
+
+TEST(Rendezvous, RankOfAnAbsentMemberIsNoneAndDuplicatesCountOnce) {
+  EXPECT_EQ(rendezvous_rank({"d1", "d2"}, "d3", "car"), std::nullopt);
+  EXPECT_EQ(rendezvous_rank({}, "d1", "car"), std::nullopt);
+  const std::vector<std::string> members{"d1", "d2"};
+  const std::string last = rendezvous_rank(members, "d1", "car") == 1u ? "d1" : "d2";
+  EXPECT_EQ(rendezvous_rank({"d1", "d2", "d1", "d2"}, last, "car"), 1u);
+}
+
+TEST(Rendezvous, WhenTheOwnerLeavesTheFirstStandbyOwns) {
+  const std::vector<std::string> members{"d1", "d2", "d3"};
+  for (const auto& s : streams(300)) {
+    const std::string owner = *rendezvous_owner(members, s);
+    std::string standby;
+    for (const auto& m : members)
+      if (rendezvous_rank(members, m, s) == 1u) standby = m;
+    std::vector<std::string> rest;
+    for (const auto& m : members)
+      if (m != owner) rest.push_back(m);
+    EXPECT_EQ(rendezvous_owner(rest, s), standby) << s;
+  }
 }

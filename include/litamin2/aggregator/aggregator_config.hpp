@@ -63,6 +63,11 @@ struct IngestConfig {
   int queue_capacity = 1024;
   /// At most this many patches are committed to the store in one transaction.
   int max_batch = 256;
+  /// Read the streams' odometry (topics.odometry) with EXCLUSIVE ownership: needed when the
+  /// daemons run hot standby (litamin2d sharding.replicas > 1), whose odometry writers are
+  /// exclusive (a SHARED reader would not match them), and wrong otherwise (it would match no
+  /// shared writer).
+  bool exclusive_odometry = false;
 };
 
 struct PublishConfig {

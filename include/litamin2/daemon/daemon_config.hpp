@@ -98,6 +98,15 @@ struct ShardingConfig {
   /// Patches whose stamp is more than this many seconds before the stream's last odometry are
   /// not used (a stream that stood still or lost its keyframes for longer starts a new map).
   double seed_max_age_s = 10.0;
+  /// Hot standby (docs/deploy.md, "Hot standby"): each stream is tracked by the first
+  /// `replicas` live members in its rendezvous order (1: by its owner only). With more than
+  /// one, the odometry writers use EXCLUSIVE ownership at strength `replicas - rank` (the
+  /// owner's is the highest), so exclusive readers get one stream of odometry and move to the
+  /// standby when the owner's participant lease expires; a standby holds its map patches
+  /// (up to outputs.map_patch_history) and publishes those after the owner's last when it
+  /// becomes the owner. Readers of rt/<stream>/odom must then be exclusive (a SHARED reader,
+  /// e.g. a ROS 2 node, does not match).
+  int replicas = 1;
 };
 
 /// Bounds on what a client may send (docs/security.md, "Validation").

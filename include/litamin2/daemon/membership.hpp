@@ -56,6 +56,9 @@ class Membership {
   bool is_live(const std::string& member) const;
   /// The live member that tracks `stream` (rendezvous_owner over live()).
   std::string owner(std::string_view stream) const;
+  /// This daemon's place for `stream` among the live members (rendezvous_rank): 0 when it owns
+  /// it, 1 when it is the first standby, ...
+  std::size_t rank(std::string_view stream) const;
   /// Incremented at every change of the live set.
   std::uint64_t epoch() const { return epoch_; }
   std::uint64_t rejected() const { return rejected_; }

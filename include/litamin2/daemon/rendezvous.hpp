@@ -6,6 +6,7 @@
 /// a member leaves only its streams move (each to the member with its next-highest weight);
 /// when one joins, only the streams it now wins move to it (Thaler and Ravishankar 1998).
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -23,5 +24,12 @@ std::uint64_t rendezvous_weight(std::string_view member, std::string_view stream
 /// there is none.
 std::optional<std::string> rendezvous_owner(const std::vector<std::string>& members,
                                             std::string_view stream);
+
+/// The place of `member` in the order of `members` by weight for `stream` (highest first, ties
+/// to the smaller id): 0 for the owner, 1 for the next (the first standby), ...; std::nullopt
+/// when `member` is not among `members`. Hot standby (sharding.replicas k) tracks a stream on
+/// the members of rank < k.
+std::optional<std::size_t> rendezvous_rank(const std::vector<std::string>& members,
+                                           std::string_view member, std::string_view stream);
 
 }  // namespace litamin2::daemon

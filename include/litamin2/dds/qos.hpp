@@ -24,6 +24,18 @@ eprosima::fastdds::dds::DataWriterQos points_writer_qos(bool best_effort = false
 /// rt/<stream>/odom: reliable, volatile, keep-last `depth`.
 eprosima::fastdds::dds::DataWriterQos odom_writer_qos(std::int32_t depth = 100);
 eprosima::fastdds::dds::DataReaderQos odom_reader_qos(std::int32_t depth = 100);
+
+/// Hot standby (docs/deploy.md, "Hot standby"): a stream's odometry written by several daemons
+/// with EXCLUSIVE ownership at `strength` (the owner's the highest), so that a reader takes
+/// only the strongest live writer's samples. Fast DDS 2.9 moves a reader to the next writer
+/// when the owner's participant is dropped (its lease), not at a writer liveliness lease
+/// (measured: a 0.5 s AUTOMATIC writer lease did not shorten the switch below the 2 s
+/// participant lease). Readers must be exclusive too (exclusive_odom_reader_qos): a SHARED
+/// reader does not match.
+eprosima::fastdds::dds::DataWriterQos exclusive_odom_writer_qos(std::uint32_t strength,
+                                                                std::int32_t depth = 100);
+/// odom_reader_qos with EXCLUSIVE ownership (matches only exclusive writers).
+eprosima::fastdds::dds::DataReaderQos exclusive_odom_reader_qos(std::int32_t depth = 100);
 /// rt/litamin2/map_patches: reliable, transient-local, keep-all per stream instance, any number
 /// of streams. The writer holds the latest `history_per_stream` patches of each stream for late
 /// readers (an aggregator starting or restarting); when a stream's history is full, writing

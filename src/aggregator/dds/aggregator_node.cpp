@@ -242,8 +242,11 @@ void AggregatorNode::subscribe_odometry(const WorkerStatus& status) {
         },
         std::move(publish_transform));
     o.listener = std::make_unique<OdometryListener>(stream, relay_);
-    o.reader = subscriber_->create_datareader(in_t, dds::odom_reader_qos(), o.listener.get(),
-                                              fdds::StatusMask::data_available());
+    o.reader = subscriber_->create_datareader(in_t,
+                                              config_.ingest.exclusive_odometry
+                                                  ? dds::exclusive_odom_reader_qos()
+                                                  : dds::odom_reader_qos(),
+                                              o.listener.get(), fdds::StatusMask::data_available());
     if (!o.reader) {
       spdlog::warn("stream {}: cannot read {}", stream, in_topic);
       continue;

@@ -50,6 +50,8 @@ struct DaemonNode::Stream {
   std::unique_ptr<StreamProcessor> processor;
   /// Sharding: the member tracking this stream now, when it is not this daemon.
   std::string moved_to;
+  /// Hot standby: this daemon's rank for the stream when set_role last ran (0: owner).
+  std::optional<std::size_t> rank;
   StreamScheduler::Handle handle = 0;
   std::unique_ptr<PointsListener> listener;
   fdds::DataReader* reader = nullptr;
@@ -174,7 +176,11 @@ DaemonNode::Stream& DaemonNode::add_stream(StreamConfig config, std::optional<Ha
   auto* odom_topic = topic(odom_topic_name, odom_type_.get_type_name());
   if (!s.points_topic || !odom_topic)
     throw std::runtime_error("stream " + s.config.id + ": cannot create its topics");
-  s.odom_writer = publisher_->create_datawriter(odom_topic, dds::odom_writer_qos());
+  // Hot standby: every tracking daemon writes the odometry, readers take the strongest's;
+  // set_role gives the strength.
+  s.odom_writer = publisher_->create_datawriter(odom_topic, config_.sharding.replicas > 1
+                                                                ? dds::exclusive_odom_writer_qos(1)
+                                                                : dds::odom_writer_qos());
   if (!s.odom_writer) throw std::runtime_error("stream " + s.config.id + ": no odom writer");
   // The stream's patches in the partition of its id (dds/stream_partition.hpp): with
   // DDS-Security, Fast DDS refuses the writer unless the permissions grant the partition.
@@ -267,7 +273,10 @@ void DaemonNode::on_sharded_writer(const DiscoveredWriter& writer) {
         participant_->create_topic(odom, odom_type_.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
     if (topic)
       it->second.odom_reader = subscriber_->create_datareader(
-          topic, dds::odom_reader_qos(1), &handover_, fdds::StatusMask::data_available());
+          topic,
+          config_.sharding.replicas > 1 ? dds::exclusive_odom_reader_qos(1)
+                                        : dds::odom_reader_qos(1),
+          &handover_, fdds::StatusMask::data_available());
     if (!it->second.odom_reader)
       spdlog::warn("stream {}: cannot read {}: a takeover would start a new odometry frame", *id,
                    odom);
@@ -290,11 +299,15 @@ void DaemonNode::reshard(Clock::time_point now) {
     claiming_ = true;
     spdlog::info("sharding: live members {}", fmt::join(membership_->live(), ", "));
   }
+  const auto replicas = static_cast<std::size_t>(config_.sharding.replicas);
   for (const auto& [id, known] : known_) {
-    const std::string owner = membership_->owner(id);
+    const std::size_t rank = membership_->rank(id);
     Stream* s = find_by_id(id);
-    if (owner == membership_->self()) {
-      if (s && s->reader) continue;
+    if (rank < replicas) {
+      if (s && s->reader) {
+        set_role(*s, rank);
+        continue;
+      }
       std::optional<HandoverSeed> seed = handover_seed(id);
       if (seed) {
         ++takeovers_;
@@ -318,13 +331,49 @@ void DaemonNode::reshard(Clock::time_point now) {
         start_processor(*s, std::move(seed));
       }
       s->moved_to.clear();
+      s->rank.reset();
+      set_role(*s, rank);
       attach_reader(*s, known.reliable);
     } else if (s && s->reader) {
+      const std::string owner = membership_->owner(id);
       spdlog::info("stream {}: moved to member {}", id, owner);
       detach_reader(*s);
       s->moved_to = owner;
     }
   }
+}
+
+void DaemonNode::set_role(Stream& s, std::size_t rank) {
+  if (config_.sharding.replicas <= 1) return;
+  const std::string& id = s.config.id;
+  if (s.rank == rank) {
+    if (rank > 0) s.sink->drop_held_before(handover_.next_keyframe_id(id));
+    return;
+  }
+  fdds::DataWriterQos qos = s.odom_writer->get_qos();
+  qos.ownership_strength().value = static_cast<std::uint32_t>(config_.sharding.replicas - rank);
+  if (s.odom_writer->set_qos(qos) != ReturnCode_t::RETCODE_OK)
+    spdlog::error("stream {}: cannot set the odometry writer's ownership strength to {}", id,
+                  qos.ownership_strength().value);
+  if (rank == 0) {
+    if (s.sink->holding()) {
+      const std::uint64_t first = handover_.next_keyframe_id(id);
+      const std::size_t written = s.sink->release(first);
+      spdlog::info(
+          "stream {}: owned here now (strength {}); {} held map patch(es) from id {} "
+          "published",
+          id, qos.ownership_strength().value, written, first);
+    } else {
+      spdlog::info("stream {}: owned here (strength {})", id, qos.ownership_strength().value);
+    }
+  } else {
+    s.sink->hold(static_cast<std::size_t>(config_.outputs.map_patch_history));
+    spdlog::info(
+        "stream {}: standby {} here (strength {}): map patches held until it owns the "
+        "stream",
+        id, rank, qos.ownership_strength().value);
+  }
+  s.rank = rank;
 }
 
 std::vector<std::string> DaemonNode::members() const {

@@ -104,6 +104,13 @@ void HandoverListener::on_map_patches(fdds::DataReader* reader) {
   }
 }
 
+std::uint64_t HandoverListener::next_keyframe_id(const std::string& stream) const {
+  std::lock_guard lock(mutex_);
+  const auto it = streams_.find(stream);
+  if (it == streams_.end() || !it->second.last_keyframe_id) return 0;
+  return *it->second.last_keyframe_id + 1;
+}
+
 std::optional<HandoverSeed> HandoverListener::seed(const std::string& stream) const {
   std::lock_guard lock(mutex_);
   const auto it = streams_.find(stream);

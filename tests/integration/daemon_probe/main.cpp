@@ -102,6 +102,9 @@ int main(int argc, char** argv) {
   app.add_option("--stream", streams, "ID or ID=REFERENCE_POSES_KITTI (repeatable)")->required();
   app.add_option("--expect", expect, "odometry messages expected per stream")->required();
   dds_options.add_to(app);
+  bool exclusive = false;
+  app.add_flag("--exclusive", exclusive,
+               "read the odometry with EXCLUSIVE ownership (litamin2d hot standby)");
   app.add_option("--timeout", timeout_s);
   app.add_option("--ready-file", ready_file, "created once every odom reader is matched");
   app.add_option("--poses-out", poses_out, "prefix of files with the received poses (KITTI)");
@@ -131,7 +134,10 @@ int main(int argc, char** argv) {
     if (eq != std::string::npos) p.reference = s.substr(eq + 1);
     auto* topic = participant->create_topic("rt/" + p.id + "/odom", odom_type.get_type_name(),
                                             fdds::TOPIC_QOS_DEFAULT);
-    subscriber->create_datareader(topic, litamin2::dds::odom_reader_qos(1000), p.listener.get());
+    subscriber->create_datareader(topic,
+                                  exclusive ? litamin2::dds::exclusive_odom_reader_qos(1000)
+                                            : litamin2::dds::odom_reader_qos(1000),
+                                  p.listener.get());
     probes.push_back(std::move(p));
   }
   StatusListener status_listener;

@@ -87,6 +87,11 @@ class DaemonNode {
   Stream* find_by_id(const std::string& id);
   void on_sharded_writer(const DiscoveredWriter& writer);
   void reshard(Clock::time_point now);
+  /// Hot standby (sharding.replicas > 1): this daemon's place `rank` for the stream sets its
+  /// odometry writer's ownership strength (replicas - rank); a standby (rank > 0) holds its
+  /// map patches, the owner (rank 0) writes them, and on promotion the held ones the old
+  /// owner did not publish.
+  void set_role(Stream& stream, std::size_t rank);
   std::optional<HandoverSeed> handover_seed(const std::string& id) const;
   Stream* find_by_topic(const std::string& topic);
   void on_writer(const DiscoveredWriter& writer);

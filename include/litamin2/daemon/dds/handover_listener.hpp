@@ -37,6 +37,9 @@ class HandoverListener : public eprosima::fastdds::dds::DataReaderListener {
   /// map_keyframes are select_map_seed() of the kept patches that pass dds::from_map_patch
   /// (the others are counted in rejected()).
   std::optional<HandoverSeed> seed(const std::string& stream) const;
+  /// The id after the highest keyframe id of `stream` seen on the map patches topic (0 when
+  /// none was seen): where a promoted standby's held patches start (hot standby).
+  std::uint64_t next_keyframe_id(const std::string& stream) const;
   /// Messages rejected by the checks.
   std::uint64_t rejected() const;
 
