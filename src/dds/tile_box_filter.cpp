@@ -4,6 +4,7 @@
 #include <fastdds/dds/topic/IContentFilter.hpp>
 #include <fastdds/dds/topic/IContentFilterFactory.hpp>
 
+#include <atomic>
 #include <charconv>
 #include <cstring>
 #include <string_view>
@@ -12,6 +13,9 @@ namespace litamin2::dds {
 namespace {
 
 namespace fdds = eprosima::fastdds::dds;
+
+std::atomic<std::uint64_t> g_evaluations{0};
+std::atomic<std::uint64_t> g_passed{0};
 
 /// CDR encapsulation identifiers (first two bytes): plain CDR, big- and little-endian.
 constexpr std::uint8_t kCdrBigEndian = 0x00;
@@ -38,7 +42,10 @@ class TileBoxFilter final : public fdds::IContentFilter {
   bool evaluate(const SerializedPayload& payload, const FilterSampleInfo&,
                 const GUID_t&) const override {
     const auto key = serialized_tile_key(payload.data, payload.length);
-    return key && box_.contains(key->first, key->second);
+    const bool pass = key && box_.contains(key->first, key->second);
+    g_evaluations.fetch_add(1, std::memory_order_relaxed);
+    if (pass) g_passed.fetch_add(1, std::memory_order_relaxed);
+    return pass;
   }
   TileBox box_;
 };
@@ -106,6 +113,14 @@ bool register_tile_box_filter(fdds::DomainParticipant* participant) {
   static TileBoxFilterFactory factory;  // stateless, shared by every participant
   return participant->register_content_filter_factory(kTileBoxFilterClass, &factory) ==
          ReturnCode_t::RETCODE_OK;
+}
+
+std::uint64_t tile_box_evaluations() {
+  return g_evaluations.load(std::memory_order_relaxed);
+}
+
+std::uint64_t tile_box_passed() {
+  return g_passed.load(std::memory_order_relaxed);
 }
 
 }  // namespace litamin2::dds

@@ -61,7 +61,7 @@ echo "== late clients: every tile, the box (with a PLY)"
   { cat late.log; exit 1; }
 wait "$early" || { echo "early client failed"; cat early.log; exit 1; }
 stop_aggregator
-grep "map tiles:" aggregator.log | tail -1
+grep "map tiles:" aggregator.log | tail -1 | sed 's/^info: //' 
 
 echo "== restart on the same store: every tile again, later revisions"
 start_aggregator
@@ -98,6 +98,10 @@ ply_vertices = int(next(l for l in open("box.ply", "rb").read().split(b"end_head
                         if l.startswith("element vertex")).split()[2])
 assert ply_vertices == sum(t["distributions"] for t in late.values()), ply_vertices
 print(f"box PLY: {ply_vertices} means; revisions increase across the restart")
+# Where the box was filtered (informative, not asserted: Fast DDS decides): samples each
+# client's own filter evaluated (0: its writer filtered for it).
+for f in ("early", "late", "all", "restart"):
+    print(f"{f} client: its filter evaluated {json.load(open(f + '.json'))['filter_evaluations_here']} sample(s)")
 PY
 deferred=$(grep "map tiles:" aggregator.log | head -1 | sed -E 's/.* ([0-9]+) deferred.*/\1/')
 echo "first run: $deferred change(s) deferred by publish_period_s"

@@ -68,6 +68,8 @@ nlohmann::ordered_json summary_json(
   j["accepted"] = counts.accepted;
   j["stale"] = counts.stale;
   j["take_failures"] = counts.take_failures;
+  // Samples this client's filter evaluated: 0 when the writer filtered for it.
+  j["filter_evaluations_here"] = litamin2::dds::tile_box_evaluations();
   j["rejected"] = nlohmann::ordered_json::object();
   for (const litamin2::dds::TileError e : litamin2::dds::all_tile_errors()) {
     const auto it = counts.rejected.find(litamin2::dds::to_string(e));

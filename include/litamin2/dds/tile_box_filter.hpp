@@ -45,4 +45,9 @@ std::optional<std::pair<std::int32_t, std::int32_t>> serialized_tile_key(const s
 /// Registers the filter class on `participant` (once per participant; true on success).
 bool register_tile_box_filter(eprosima::fastdds::dds::DomainParticipant* participant);
 
+/// Samples this process's box filters have evaluated (and let through): on a writer's side
+/// when the writer filters, on the reader's when it does not.
+std::uint64_t tile_box_evaluations();
+std::uint64_t tile_box_passed();
+
 }  // namespace litamin2::dds

@@ -385,8 +385,11 @@ void AggregatorNode::shutdown() {
   // The worker's last turn handed its tiles over; the ones held by the period go out now.
   tiles_->flush_all();
   const MapTileCounters tiles = tiles_->counters();
-  spdlog::info("map tiles: {} sample(s) published, {} deferred ({} folded), {} write failure(s)",
-               tiles.published, tiles.deferred, tiles.folded, tiles.write_failures);
+  spdlog::info(
+      "map tiles: {} sample(s) published, {} deferred ({} folded), {} write failure(s); the "
+      "writer's box filter evaluated {} sample(s) for readers, passed {}",
+      tiles.published, tiles.deferred, tiles.folded, tiles.write_failures,
+      dds::tile_box_evaluations(), dds::tile_box_passed());
   relay_.stop();
   publish_status(Clock::now());
   spdlog::info("shut down: {} queued patch(es) committed; {}", queued, summary());
