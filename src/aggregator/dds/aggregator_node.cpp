@@ -195,8 +195,9 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
     throw std::runtime_error("cannot create the writer of " + config_.topics.map_tiles);
   // Revisions start at the wall clock's microseconds: above the previous run's.
   const auto first_revision = static_cast<std::uint64_t>(dds::wall_clock_now().nanoseconds / 1000);
-  tiles_ = std::make_unique<MapTilePublisher>(tile_writer, config_.map_tiles.publish_period_s,
-                                              first_revision);
+  tiles_ = std::make_unique<MapTilePublisher>(
+      [tile_writer](litamin2::msg::MapTile& msg) { return tile_writer->write(&msg); },
+      config_.map_tiles.publish_period_s, first_revision);
   sink_ = std::make_unique<Sink>(poses_writer, summary_writer, relay_, cloud_.get(), *tiles_);
   worker_ = std::make_unique<MappingWorker>(*core_, queue_, *sink_, config_);
   relay_.start();

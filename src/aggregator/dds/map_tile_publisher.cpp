@@ -5,7 +5,6 @@
 #include "litamin2/dds/time_conversion.hpp"
 
 #include <spdlog/spdlog.h>
-#include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 
 namespace litamin2::aggregator {
@@ -27,9 +26,8 @@ fdds::DataWriterQos map_tiles_writer_qos() {
   return qos;
 }
 
-MapTilePublisher::MapTilePublisher(fdds::DataWriter* writer, double period_s,
-                                   std::uint64_t first_revision)
-    : writer_(writer),
+MapTilePublisher::MapTilePublisher(Write write, double period_s, std::uint64_t first_revision)
+    : write_(std::move(write)),
       limiter_(
           std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period_s))),
       next_revision_(first_revision) {}
@@ -74,7 +72,7 @@ MapTileCounters MapTilePublisher::counters() const {
 }
 
 void MapTilePublisher::write(litamin2::msg::MapTile& msg) {
-  if (writer_->write(&msg)) {
+  if (write_(msg)) {
     ++published_;
     return;
   }

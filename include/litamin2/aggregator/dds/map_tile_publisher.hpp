@@ -17,11 +17,11 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <mutex>
 
 namespace eprosima::fastdds::dds {
-class DataWriter;
 struct DataWriterQos;
 }  // namespace eprosima::fastdds::dds
 
@@ -46,8 +46,10 @@ class MapTilePublisher {
  public:
   using Clock = std::chrono::steady_clock;
 
-  MapTilePublisher(eprosima::fastdds::dds::DataWriter* writer, double period_s,
-                   std::uint64_t first_revision);
+  /// Writes one sample (the DataWriter's write; a recorder in tests); false: failed.
+  using Write = std::function<bool(litamin2::msg::MapTile&)>;
+
+  MapTilePublisher(Write write, double period_s, std::uint64_t first_revision);
 
   /// The mapping thread: `tile` changed.
   void offer(const TileOutput& tile, Clock::time_point now = Clock::now());
@@ -61,7 +63,7 @@ class MapTilePublisher {
  private:
   void write(litamin2::msg::MapTile& msg);
 
-  eprosima::fastdds::dds::DataWriter* writer_;
+  Write write_;
   mutable std::mutex mutex_;
   TileRateLimiter limiter_;
   std::map<mapping::TileKey, litamin2::msg::MapTile> held_;
