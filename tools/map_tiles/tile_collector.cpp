@@ -26,7 +26,8 @@ void TileCollector::on_data_available(fdds::DataReader* reader) {
     dds::TileConversion c = dds::from_map_tile(msg, options_);
     if (!c.ok()) {
       ++counts_.rejected[dds::to_string(c.error)];
-      spdlog::warn("rejected: {}", c.message);
+      // The first few in full; the rest are counted (a flood of bad samples floods no log).
+      if (++logged_rejections_ <= kLoggedRejections) spdlog::warn("rejected: {}", c.message);
       continue;
     }
     ++counts_.accepted;

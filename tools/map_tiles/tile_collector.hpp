@@ -49,6 +49,8 @@ class TileCollector : public eprosima::fastdds::dds::DataReaderListener {
   std::condition_variable changed_;
   std::map<Key, dds::MapTileData> tiles_;
   CollectorCounts counts_;
+  static constexpr std::uint64_t kLoggedRejections = 10;
+  std::uint64_t logged_rejections_ = 0;
 };
 
 }  // namespace litamin2::map_tiles
