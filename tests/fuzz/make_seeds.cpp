@@ -5,9 +5,11 @@
 // (the shipped config files become config_yaml seeds).
 
 #include "litamin2/dds/map_patch_conversion.hpp"
+#include "litamin2/dds/map_tile_conversion.hpp"
 #include "litamin2/dds/odometry_conversion.hpp"
 #include "litamin2/dds/pointcloud2_conversion.hpp"
 #include "litamin2/msg/MapPatchPubSubTypes.h"
+#include "litamin2/msg/MapTilePubSubTypes.h"
 #include "litamin2/store/record_codec.hpp"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 #include "sensor_msgs/msg/PointCloud2PubSubTypes.h"
@@ -185,6 +187,55 @@ void map_patch_seeds() {
   const std::uint32_t huge = 0x7fffffff;
   std::memcpy(bytes.data() + bytes.size() - 40 * good.distributions().size() - 4, &huge, 4);
   write(h, "regression-length-beyond-payload", bytes);
+}
+
+/// Tile (1, -2) of 20 m, 2 m voxels, n distributions inside it.
+dds::MapTileData sample_tile(int n) {
+  dds::MapTileData t;
+  t.ix = 1;
+  t.iy = -2;
+  t.tile_size = 20.0;
+  t.voxel_size = 2.0;
+  t.revision = 1'700'000'000'000'000;
+  t.stamp.nanoseconds = 1'700'000'000'000'000'000;
+  t.frame_id = "map";
+  t.anchor_stream = "car_1";
+  t.keyframes = n > 0 ? 3 : 0;
+  for (int i = 0; i < n; ++i) {
+    Distribution d;
+    d.mean = Eigen::Vector3d(21.0 + 0.5 * i, -39.0 + 0.25 * i, 0.1 * (i % 4));
+    d.cov = Eigen::Vector3d(0.2, 0.1, 0.01).asDiagonal();
+    d.count = 5 + i;
+    t.distributions.push_back(d);
+  }
+  return t;
+}
+
+void map_tile_seeds() {
+  const std::string h = "map_tile_cdr";
+  using Type = litamin2::msg::MapTilePubSubType;
+  const auto good = dds::to_map_tile(sample_tile(8));
+  auto m = good;
+  write(h, "valid", cdr<Type>(m));
+  m = dds::to_map_tile(sample_tile(0));
+  write(h, "valid_gone_tile", cdr<Type>(m));
+  auto bad_seed = [&](const std::string& name, auto change) {
+    auto bad = good;
+    change(bad);
+    write(h, "reject-" + name, cdr<Type>(bad));
+  };
+  bad_seed("tile-size-nan", [](auto& t) { t.tile_size(std::nanf("")); });
+  bad_seed("voxel-size-0", [](auto& t) { t.voxel_size(0.0f); });
+  bad_seed("key-beyond-bounds", [](auto& t) { t.ix(2'000'000'000); });
+  bad_seed("stamp-nanosec", [](auto& t) { t.stamp().nanosec(2'000'000'000u); });
+  bad_seed("empty-frame", [](auto& t) { t.frame_id(""); });
+  bad_seed("no-keyframes", [](auto& t) { t.keyframes(0); });
+  bad_seed("distribution-not-psd", [](auto& t) { t.distributions()[1].cov({-1, 0, 0, 1, 0, 1}); });
+  bad_seed("mean-outside-tile", [](auto& t) { t.distributions()[2].mean({0.0f, 0.0f, 0.0f}); });
+  m = dds::to_map_tile(sample_tile(4097));  // the harness allows 4096
+  write(h, "reject-too-many-distributions", cdr<Type>(m));
+  std::string bytes = cdr<Type>(m = good);
+  write(h, "reject-truncated-sequence", bytes.substr(0, bytes.size() - 60));
 }
 
 void odometry_seeds() {
@@ -375,6 +426,7 @@ int main(int argc, char** argv) {
   root = argv[1];
   pointcloud2_seeds();
   map_patch_seeds();
+  map_tile_seeds();
   odometry_seeds();
   record_codec_seeds();
   file_seeds();

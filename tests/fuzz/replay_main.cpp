@@ -1,9 +1,9 @@
 // The main() of a fuzz harness in the normal (GCC) build: runs LLVMFuzzerTestOneInput once on
 // every file given and on every file of every folder given (the seed corpus, the regression
 // inputs), so that the harnesses and their property checks run in every test suite without
-// libFuzzer. Every input named regression-* (a finding of issue 14) must be rejected by the
-// parser. Exit 0 when every input was run and every regression input rejected (a violated
-// property aborts).
+// libFuzzer. Every input named regression-* (a finding of issue 14) or reject-* (an invalid
+// seed written to be rejected) must be rejected by the parser. Exit 0 when every input was run
+// and every such input rejected (a violated property aborts).
 
 #include <algorithm>
 #include <cstddef>
@@ -44,14 +44,14 @@ int main(int argc, char** argv) {
                                   std::istreambuf_iterator<char>());
     litamin2::fuzz::accepted() = false;
     LLVMFuzzerTestOneInput(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
-    if (path.filename().string().rfind("regression-", 0) != 0) {
+    const std::string name = path.filename().string();
+    if (name.rfind("regression-", 0) != 0 && name.rfind("reject-", 0) != 0) {
       accepted_others += litamin2::fuzz::accepted();
       continue;
     }
     ++regressions;
     if (litamin2::fuzz::accepted()) {
-      std::fprintf(stderr, "%s: accepted, but it is a finding that must be rejected\n",
-                   path.c_str());
+      std::fprintf(stderr, "%s: accepted, but it must be rejected\n", path.c_str());
       ++accepted_regressions;
     }
   }

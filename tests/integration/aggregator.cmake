@@ -7,6 +7,8 @@
 #    byte-identical.
 #  - integration_aggregator_fleet_bench: litamin2-fleet-bench at small sizes, as a
 #    correctness test (loops, ATE, restart from the tables of a 20k-keyframe store).
+#  - integration_map_tiles: the map tiles on rt/litamin2/map_tiles and litamin2-map-tiles
+#    (content-filtered box, early and late-joining clients, revisions across a restart).
 #  - integration_aggregator_errors: corrupt store (aggregator and export exit non-zero naming
 #    the file, bytes unchanged), bad configurations, --help/--version/--check-config.
 if(TARGET litamin2-aggregator)
@@ -24,6 +26,12 @@ if(TARGET litamin2-aggregator)
       ${CMAKE_CURRENT_BINARY_DIR}/aggregator_errors ${CMAKE_SOURCE_DIR})
   set_tests_properties(integration_aggregator_errors PROPERTIES TIMEOUT 120 RUN_SERIAL TRUE)
 
+  if(TARGET litamin2-map-tiles)
+    add_test(NAME integration_map_tiles
+      COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/map_tiles.sh ${CMAKE_BINARY_DIR}
+        ${CMAKE_CURRENT_BINARY_DIR}/map_tiles)
+    set_tests_properties(integration_map_tiles PROPERTIES TIMEOUT 180 RUN_SERIAL TRUE)
+  endif()
   if(TARGET litamin2-fleet-bench)
     add_test(NAME integration_aggregator_fleet_bench
       COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/aggregator_fleet_bench.sh ${CMAKE_BINARY_DIR}

@@ -3,13 +3,14 @@
 # 127.0.0.1 only (an XML profile without shared memory, so that all traffic crosses lo and is
 # captured). A fleet PKI from scripts/litamin2-pki; litamin2d and litamin2-aggregator secured.
 #  1. A vehicle identity replays a stream whose id holds a marker; an operator identity gets
-#     every odometry message; the aggregator stores the stream's keyframes.
+#     every odometry message; the aggregator stores the stream's keyframes; a map client
+#     identity (litamin2-map-tiles) gets the aggregator's map tiles.
 #  2. Participants without a valid certificate (no security; a certificate of another CA) get
 #     no odometry, and their point clouds and map patches change nothing: the daemon's streams
 #     and counters and the store's rows stay as they were.
 #  3. Valid participants without permission for a topic are refused: a vehicle publishing
 #     another vehicle's points, a vehicle or an operator publishing map patches, a vehicle
-#     reading the map patches.
+#     reading the map patches or the map tiles.
 #  4. The capture of lo holds no plaintext of the marker (discovery, metadata and data are
 #     AES-GCM encrypted; the permissions name streams by pattern, see docs/security.md).
 #  5. Tampered, unsigned, expired and mismatched files stop each process at start (exit 2)
@@ -47,6 +48,7 @@ echo "== PKI (scripts/litamin2-pki): streams granted by the pattern fleet_*"
 "$pki_tool" daemon pki host_a --streams 'fleet_*'
 "$pki_tool" aggregator pki aggregator
 "$pki_tool" operator pki operator
+"$pki_tool" map-client pki map_client
 # Another fleet's CA: a certificate that is valid, but not ours.
 "$pki_tool" init rogue --domains $domain-$domain > /dev/null
 "$pki_tool" vehicle rogue vehicle_a --streams 'fleet_*' > /dev/null
@@ -127,6 +129,10 @@ wait_status aggregator_status.txt $marker keyframes "$keyframes"
 stored=$(sqlite3 -readonly store.db "select count(*) from keyframes")
 [ "$stored" -eq "$keyframes" ] || fail "store: $stored keyframes, expected $keyframes"
 echo "operator: $frames odometry messages; store: $stored keyframes"
+timeout 60 "$tools/map_tiles/litamin2-map-tiles" --domain $domain --profile $profile --pki pki \
+  --identity map_client --count 1 --timeout 20 --json > tiles.json 2> tiles.log ||
+  { cat tiles.log; fail "the map client did not get a map tile"; }
+echo "map client: $(grep -c '"ix"' tiles.json) map tile(s) over rt/litamin2/map_tiles"
 received=$(status_value daemon_status.txt $marker frames_received)
 streams_before=$(awk '$2 == "frames_received"' daemon_status.txt | wc -l)
 
@@ -177,6 +183,8 @@ refused refuse_patches_operator.log "$probes/raw_cdr_writer" --domain $domain --
   --pki pki --identity operator --type patch --stream fleet_x --malformation valid --timeout 6
 refused refuse_read_patches.log "$probes/status_probe" --domain $domain --profile $profile \
   --pki pki --identity vehicle_a --topic rt/litamin2/map_patches --timeout 2
+refused refuse_read_tiles.log "$tools/map_tiles/litamin2-map-tiles" --domain $domain \
+  --profile $profile --pki pki --identity vehicle_a --timeout 2
 sed -n 's/^/  /p' refuse_points.log | grep -iE "cannot|refused" | head -2
 [ "$(sqlite3 -readonly store.db "select count(*) from keyframes")" -eq "$stored" ] ||
   fail "store rows changed"

@@ -35,6 +35,8 @@ TEST(AggregatorMetrics, StatusCountersAsSamples) {
   in.received = 14;
   in.rejected_by_reason = {{"bad_covariance", 2}};
   in.queued = 3;
+  in.map_tiles_published = 9;
+  in.map_tiles_deferred = 4;
   std::map<std::string, OdometryStreamStatus> odometry;
   odometry["car1"].received = 40;
   odometry["car1"].published = 38;
@@ -53,6 +55,8 @@ TEST(AggregatorMetrics, StatusCountersAsSamples) {
   EXPECT_TRUE(
       has_line(text, "litamin2_aggregator_patches_rejected_total{reason=\"bad_covariance\"} 2"));
   EXPECT_TRUE(has_line(text, "litamin2_aggregator_queue_depth 3"));
+  EXPECT_TRUE(has_line(text, "litamin2_aggregator_map_tiles_published_total 9"));
+  EXPECT_TRUE(has_line(text, "litamin2_aggregator_map_tiles_deferred_total 4"));
   EXPECT_TRUE(has_line(text, "litamin2_aggregator_store_size_bytes 4096"));
   EXPECT_TRUE(has_line(text, "litamin2_aggregator_store_failed 0"));
   EXPECT_TRUE(has_line(text, "litamin2_aggregator_odometry_received_total{stream=\"car1\"} 40"));

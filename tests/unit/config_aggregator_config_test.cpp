@@ -64,6 +64,16 @@ log_level: debug
   EXPECT_EQ(c.log_level, "debug");
 }
 
+TEST(AggregatorConfig, MapTilesPublishPeriod) {
+  EXPECT_DOUBLE_EQ(aggregator_config_from_yaml(YAML::Node()).map_tiles.publish_period_s, 1.0);
+  EXPECT_DOUBLE_EQ(aggregator_config_from_yaml(YAML::Load("map_tiles: {publish_period_s: 0.25}"))
+                       .map_tiles.publish_period_s,
+                   0.25);
+  AggregatorConfig c;
+  c.map_tiles.publish_period_s = -1.0;
+  EXPECT_THROW(validate(c), ConfigError);
+}
+
 TEST(AggregatorConfig, ErrorsNameTheKey) {
   expect_error("dds: {domain: 300}", "dds.domain: 300 is out of range");
   expect_error("dds: {profile: tcp}", "dds.profile: 'tcp' is not one of");
@@ -80,6 +90,11 @@ TEST(AggregatorConfig, ErrorsNameTheKey) {
   expect_error("map_tiles: {max_keyframes_per_turn: 0}",
                "map_tiles.max_keyframes_per_turn: 0 is out of range");
   expect_error("map_tiles: {tiles: 1}", "map_tiles.tiles: unknown key");
+  expect_error("map_tiles: {publish_period_s: -0.5}",
+               "map_tiles.publish_period_s: -0.5 is out of range");
+  expect_error("map_tiles: {publish_period_s: 7200}",
+               "map_tiles.publish_period_s: 7200 is out of range");
+  expect_error("map_tiles: {publish_period_s: .nan}", "map_tiles.publish_period_s");
   expect_error("publish: {poses_chunk_keyframes: -1}",
                "publish.poses_chunk_keyframes: -1 is out of range");
   expect_error("topics: {status: 'a b'}", "topics.status: 'a b' is not a valid topic name");

@@ -85,7 +85,9 @@ struct PublishConfig {
   /// Voxel means listed in the summary at most (decimated evenly from the tiles' samples of
   /// 32 means each); 0 = counts only.
   int summary_max_means = 10000;
-  /// Map tiles that changed are published at most this often, seconds.
+  /// The mapping thread hands the map tiles that changed over (to topics.map_tiles, which
+  /// also spaces each tile by map_tiles.publish_period_s, and to topics.map_cloud) at most
+  /// this often, seconds.
   double tiles_period_s = 2.0;
   /// Status period, seconds.
   double status_period_s = 1.0;
@@ -104,6 +106,10 @@ struct MapTilesConfig {
   int max_keyframes_per_turn = 400;
   /// Megabytes of tiles held in memory; the others are read back from the store.
   int cache_mb = 256;
+  /// A tile goes out on topics.map_tiles at most once per this many seconds: its changes
+  /// within the period go out together, once, with the newest revision (0: each change at
+  /// once; at most 3600).
+  double publish_period_s = 1.0;
 };
 
 /// Bounds on what a client may send (docs/security.md, "Validation").

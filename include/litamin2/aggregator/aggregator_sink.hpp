@@ -11,8 +11,8 @@ class AggregatorSink {
   virtual ~AggregatorSink() = default;
   virtual void publish_poses(const StreamPoses& poses) = 0;
   virtual void publish_summary(const MapSummary& summary) = 0;
-  /// A map tile that changed. Not on the wire yet (the DDS node has no MapTile type and keeps
-  /// this default, which drops it): tests and benchmarks record it.
+  /// A map tile that changed (the DDS node publishes it on topics.map_tiles; tests and
+  /// benchmarks record it; this default drops it).
   virtual void publish_tile(const TileOutput& /*tile*/) {}
 };
 

@@ -2,8 +2,11 @@
 
 #include "litamin2/dds/diagnostics.hpp"
 #include "litamin2/dds/map_patch_conversion.hpp"
+#include "litamin2/dds/map_tile_conversion.hpp"
 #include "litamin2/dds/pose_conversion.hpp"
 #include "litamin2/dds/time_conversion.hpp"
+
+#include <algorithm>
 
 namespace litamin2::aggregator {
 
@@ -27,6 +30,22 @@ litamin2::msg::KeyframePoses to_keyframe_poses_msg(const StreamPoses& poses) {
     out.push_back(std::move(p));
   }
   return msg;
+}
+
+litamin2::msg::MapTile to_map_tile_msg(const TileOutput& tile, std::uint64_t revision,
+                                       Stamp stamp) {
+  dds::MapTileData data;
+  data.ix = tile.key.ix;
+  data.iy = tile.key.iy;
+  data.tile_size = tile.tile_size;
+  data.voxel_size = tile.voxel_size;
+  data.revision = revision;
+  data.stamp = stamp;
+  data.frame_id = kMapFrame;
+  data.anchor_stream = tile.anchor;
+  data.keyframes = static_cast<std::uint64_t>(std::max<std::int64_t>(tile.keyframes, 0));
+  data.distributions = tile.distributions;
+  return dds::to_map_tile(data);
 }
 
 litamin2::msg::MapSummary to_map_summary_msg(const MapSummary& s, Stamp stamp) {

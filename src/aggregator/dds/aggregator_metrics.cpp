@@ -82,6 +82,11 @@ std::string aggregator_metrics_text(const WorkerStatus& w, const IngestCounters&
          static_cast<double>(in.queue_capacity));
   scalar(out, "litamin2_aggregator_map_tiles", Type::kGauge, "map tiles in the store",
          static_cast<double>(w.tiles));
+  scalar(out, "litamin2_aggregator_map_tiles_published_total", Type::kCounter,
+         "map tile samples written on topics.map_tiles", num(in.map_tiles_published));
+  scalar(out, "litamin2_aggregator_map_tiles_deferred_total", Type::kCounter,
+         "map tile changes held back by map_tiles.publish_period_s (sent later, newest only)",
+         num(in.map_tiles_deferred));
   scalar(out, "litamin2_aggregator_map_pending", Type::kGauge,
          "keyframes still to be fused into the map tiles", static_cast<double>(w.map_pending));
   scalar(out, "litamin2_aggregator_store_size_bytes", Type::kGauge,

@@ -8,11 +8,13 @@
 #include "litamin2/dds/participant_setup.hpp"
 #include "litamin2/dds/qos.hpp"
 #include "litamin2/dds/stream_partition.hpp"
+#include "litamin2/dds/tile_box_filter.hpp"
 #include "litamin2/dds/time_conversion.hpp"
 #include "litamin2/dds/transform_conversion.hpp"
 #include "litamin2/msg/KeyframePosesPubSubTypes.h"
 #include "litamin2/msg/MapPatchPubSubTypes.h"
 #include "litamin2/msg/MapSummaryPubSubTypes.h"
+#include "litamin2/msg/MapTilePubSubTypes.h"
 #include "litamin2/service/topic_names.hpp"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 #include "sensor_msgs/msg/PointCloud2PubSubTypes.h"
@@ -70,9 +72,10 @@ std::uint32_t patch_payload_limit(int max_distributions) {
 class AggregatorNode::Sink : public AggregatorSink {
  public:
   Sink(fdds::DataWriter* poses, fdds::DataWriter* summary, MapOdometryRelay& relay,
-       MapCloudBuffer* cloud)
-      : poses_(poses), summary_(summary), relay_(relay), cloud_(cloud) {}
+       MapCloudBuffer* cloud, MapTilePublisher& tiles)
+      : poses_(poses), summary_(summary), relay_(relay), cloud_(cloud), tiles_(tiles) {}
   void publish_tile(const TileOutput& tile) override {
+    tiles_.offer(tile);
     if (!cloud_) return;
     std::lock_guard lock(cloud_->mutex);
     cloud_->cloud.update(tile);
@@ -93,6 +96,7 @@ class AggregatorNode::Sink : public AggregatorSink {
   fdds::DataWriter* summary_;
   MapOdometryRelay& relay_;
   MapCloudBuffer* cloud_;
+  MapTilePublisher& tiles_;
 };
 
 AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Progress& progress)
@@ -181,7 +185,20 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
       throw std::runtime_error("cannot create the writer of " + config_.topics.map_cloud);
     cloud_ = std::make_unique<MapCloudBuffer>();
   }
-  sink_ = std::make_unique<Sink>(poses_writer, summary_writer, relay_, cloud_.get());
+  // The clients' box filter, so that this writer sends each of them only its tiles.
+  if (!dds::register_tile_box_filter(participant_.get()))
+    spdlog::warn("cannot register the tile box filter: map tile readers filter themselves");
+  tile_type_ = dds::register_type(participant_.get(), new litamin2::msg::MapTilePubSubType());
+  fdds::DataWriter* tile_writer = publisher_->create_datawriter(
+      topic(config_.topics.map_tiles, tile_type_), map_tiles_writer_qos());
+  if (!tile_writer)
+    throw std::runtime_error("cannot create the writer of " + config_.topics.map_tiles);
+  // Revisions start at the wall clock's microseconds: above the previous run's.
+  const auto first_revision = static_cast<std::uint64_t>(dds::wall_clock_now().nanoseconds / 1000);
+  tiles_ = std::make_unique<MapTilePublisher>(
+      [tile_writer](litamin2::msg::MapTile& msg) { return tile_writer->write(&msg); },
+      config_.map_tiles.publish_period_s, first_revision);
+  sink_ = std::make_unique<Sink>(poses_writer, summary_writer, relay_, cloud_.get(), *tiles_);
   worker_ = std::make_unique<MappingWorker>(*core_, queue_, *sink_, config_);
   relay_.start();
   worker_->start();
@@ -193,10 +210,11 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
           << fdds::StatusMask::subscription_matched() << fdds::StatusMask::sample_lost());
   if (!reader_) throw std::runtime_error("cannot create the map patch reader");
   next_status_ = Clock::now();
-  spdlog::info("DDS participant up: domain {} ({}), profile {}, reading {}, publishing {} and {}",
-               config_.dds.domain, service::to_string(config_.dds.domain_source),
-               service::to_string(config_.dds.profile), config_.topics.map_patches,
-               config_.topics.keyframe_poses, config_.topics.map_summary);
+  spdlog::info(
+      "DDS participant up: domain {} ({}), profile {}, reading {}, publishing {}, {} and {}",
+      config_.dds.domain, service::to_string(config_.dds.domain_source),
+      service::to_string(config_.dds.profile), config_.topics.map_patches,
+      config_.topics.keyframe_poses, config_.topics.map_summary, config_.topics.map_tiles);
 }
 
 AggregatorNode::~AggregatorNode() {
@@ -260,6 +278,7 @@ void AggregatorNode::poll(Clock::time_point now) {
   if (stopped_) return;
   const WorkerStatus w = worker_->status();
   if (w.streams.size() > odometry_.size()) subscribe_odometry(w);
+  tiles_->flush_due(now);
   if (cloud_ && now >= next_cloud_) publish_map_cloud(now);
   if (now < next_status_) return;
   publish_status(now);
@@ -314,6 +333,9 @@ IngestCounters AggregatorNode::ingest_counters() const {
   in.queue_capacity = queue_.capacity();
   in.queue_high_water = queue_.high_water();
   in.store_path = config_.store.path;
+  const MapTileCounters tiles = tiles_->counters();
+  in.map_tiles_published = tiles.published;
+  in.map_tiles_deferred = tiles.deferred;
   return in;
 }
 
@@ -364,6 +386,14 @@ void AggregatorNode::shutdown() {
   }
   const std::size_t queued = queue_.size();
   worker_->stop();
+  // The worker's last turn handed its tiles over; the ones held by the period go out now.
+  tiles_->flush_all();
+  const MapTileCounters tiles = tiles_->counters();
+  spdlog::info(
+      "map tiles: {} sample(s) published, {} deferred ({} folded), {} write failure(s); the "
+      "writer's box filter evaluated {} sample(s) for readers, passed {}",
+      tiles.published, tiles.deferred, tiles.folded, tiles.write_failures,
+      dds::tile_box_evaluations(), dds::tile_box_passed());
   relay_.stop();
   publish_status(Clock::now());
   spdlog::info("shut down: {} queued patch(es) committed; {}", queued, summary());

@@ -1,5 +1,5 @@
 #pragma once
-/// The aggregator's outputs as DDS messages: KeyframePoses per stream, MapSummary, and the
+/// The aggregator's outputs as DDS messages: KeyframePoses per stream, MapSummary, MapTile, and the
 /// status DiagnosticArray (one entry for the aggregator, named "litamin2-aggregator", and one
 /// per stream, named "litamin2-aggregator: <stream>").
 
@@ -9,6 +9,7 @@
 #include "litamin2/aggregator/mapping_worker.hpp"
 #include "litamin2/msg/KeyframePoses.h"
 #include "litamin2/msg/MapSummary.h"
+#include "litamin2/msg/MapTile.h"
 
 #include <cstdint>
 #include <map>
@@ -21,6 +22,8 @@ inline constexpr const char* kMapFrame = "map";
 
 litamin2::msg::KeyframePoses to_keyframe_poses_msg(const StreamPoses& poses);
 litamin2::msg::MapSummary to_map_summary_msg(const MapSummary& summary, Stamp stamp);
+/// A tile in frame "map" (dds::to_map_tile); a gone tile has no distributions and 0 keyframes.
+litamin2::msg::MapTile to_map_tile_msg(const TileOutput& tile, std::uint64_t revision, Stamp stamp);
 
 /// What the status reports besides the mapping thread's counters.
 struct IngestCounters {
@@ -37,6 +40,10 @@ struct IngestCounters {
   std::size_t queue_capacity = 0;
   std::size_t queue_high_water = 0;
   std::string store_path;
+  /// rt/litamin2/map_tiles: tile samples written, and changes held back by
+  /// map_tiles.publish_period_s (MapTilePublisher).
+  std::uint64_t map_tiles_published = 0;
+  std::uint64_t map_tiles_deferred = 0;
 };
 
 /// level: 0 OK, 1 WARN (patches rejected or lost since the last status), 2 ERROR (store failed

@@ -3,7 +3,9 @@
 /// transient-local, keep-all, every partition) whose listener only checks that each patch's
 /// stream is a partition of its writer (dds/stream_partition.hpp), converts and enqueues; writers
 /// of the corrected keyframe poses (one instance per stream, reliable, transient-local), of the map
-/// summary (reliable, transient-local) and of the status (DiagnosticArray, also on
+/// summary (reliable, transient-local), of the map tiles (one instance per tile, reliable,
+/// transient-local, each tile at most once per map_tiles.publish_period_s: map_tile_publisher.hpp)
+/// and of the status (DiagnosticArray, also on
 /// topics.diagnostics: rt/diagnostics); the mapping thread
 /// in between. For every stream seen in the patches (or recovered from the store), a reader of
 /// its odometry (reliable, keep-last, as litamin2d writes it) and a writer of its current pose
@@ -15,6 +17,7 @@
 #include "litamin2/aggregator/aggregator_core.hpp"
 #include "litamin2/aggregator/dds/aggregator_messages.hpp"
 #include "litamin2/aggregator/dds/map_odometry_relay.hpp"
+#include "litamin2/aggregator/dds/map_tile_publisher.hpp"
 #include "litamin2/aggregator/dds/odometry_listener.hpp"
 #include "litamin2/aggregator/dds/patch_listener.hpp"
 #include "litamin2/aggregator/map_cloud.hpp"
@@ -99,7 +102,7 @@ class AggregatorNode {
   PatchListener listener_;
   dds::ParticipantPtr participant_;
   eprosima::fastdds::dds::TypeSupport patch_type_, poses_type_, summary_type_, status_type_,
-      odometry_type_, tf_type_, cloud_type_;
+      odometry_type_, tf_type_, cloud_type_, tile_type_;
   /// The types of patch_type_ and odometry_type_ (owned by them), for their failure counts.
   dds::CheckedType<litamin2::msg::MapPatchPubSubType>* checked_patch_type_ = nullptr;
   dds::CheckedType<nav_msgs::msg::OdometryPubSubType>* checked_odometry_type_ = nullptr;
@@ -118,6 +121,8 @@ class AggregatorNode {
   eprosima::fastdds::dds::DataWriter* cloud_writer_ = nullptr;
   std::unique_ptr<MapCloudBuffer> cloud_;
   Clock::time_point next_cloud_{};
+  /// topics.map_tiles: fed by the mapping thread, its held tiles flushed by poll().
+  std::unique_ptr<MapTilePublisher> tiles_;
   MapOdometryRelay relay_;
   std::map<std::string, OdometryStream> odometry_;
   std::unique_ptr<Sink> sink_;

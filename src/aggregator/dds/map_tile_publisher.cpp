@@ -1,0 +1,83 @@
+#include "litamin2/aggregator/dds/map_tile_publisher.hpp"
+
+#include "litamin2/aggregator/dds/aggregator_messages.hpp"
+#include "litamin2/dds/map_tile_conversion.hpp"
+#include "litamin2/dds/time_conversion.hpp"
+
+#include <spdlog/spdlog.h>
+#include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
+
+namespace litamin2::aggregator {
+
+namespace fdds = eprosima::fastdds::dds;
+
+fdds::DataWriterQos map_tiles_writer_qos() {
+  fdds::DataWriterQos qos = fdds::DATAWRITER_QOS_DEFAULT;
+  qos.reliability().kind = fdds::RELIABLE_RELIABILITY_QOS;
+  qos.durability().kind = fdds::TRANSIENT_LOCAL_DURABILITY_QOS;
+  qos.history().kind = fdds::KEEP_LAST_HISTORY_QOS;
+  qos.history().depth = 1;
+  // One instance per tile; finite limits (Fast DDS 2.9 refuses every write with unlimited ones).
+  qos.resource_limits().max_instances = 100'000;
+  qos.resource_limits().max_samples_per_instance = 1;
+  qos.resource_limits().max_samples = 100'000;
+  qos.endpoint().history_memory_policy =
+      eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
+  return qos;
+}
+
+MapTilePublisher::MapTilePublisher(Write write, double period_s, std::uint64_t first_revision)
+    : write_(std::move(write)),
+      limiter_(
+          std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period_s))),
+      next_revision_(first_revision) {}
+
+void MapTilePublisher::offer(const TileOutput& tile, Clock::time_point now) {
+  litamin2::msg::MapTile msg = to_map_tile_msg(tile, 0, dds::wall_clock_now());
+  std::lock_guard lock(mutex_);
+  msg.revision(next_revision_++);
+  if (limiter_.offer(tile.key, now)) {
+    write(msg);
+    return;
+  }
+  held_[tile.key] = std::move(msg);
+}
+
+void MapTilePublisher::flush_due(Clock::time_point now) {
+  std::lock_guard lock(mutex_);
+  for (const mapping::TileKey& key : limiter_.take_due(now)) {
+    const auto it = held_.find(key);
+    if (it == held_.end()) continue;
+    write(it->second);
+    held_.erase(it);
+  }
+}
+
+void MapTilePublisher::flush_all() {
+  std::lock_guard lock(mutex_);
+  limiter_.take_all(Clock::now());
+  for (auto& [key, msg] : held_) write(msg);
+  held_.clear();
+}
+
+MapTileCounters MapTilePublisher::counters() const {
+  std::lock_guard lock(mutex_);
+  MapTileCounters c;
+  c.published = published_;
+  c.write_failures = write_failures_;
+  c.deferred = limiter_.deferred();
+  c.folded = limiter_.folded();
+  c.held = held_.size();
+  return c;
+}
+
+void MapTilePublisher::write(litamin2::msg::MapTile& msg) {
+  if (write_(msg)) {
+    ++published_;
+    return;
+  }
+  ++write_failures_;
+  spdlog::warn("cannot publish map tile ({}, {}) revision {}", msg.ix(), msg.iy(), msg.revision());
+}
+
+}  // namespace litamin2::aggregator
