@@ -53,7 +53,7 @@ struct RecoveryConfig {
   /// A wider search after the retries (global_pose_search.hpp): a scan whose best share is still
   /// below global_search.trigger_ratio of the typical share is located by a correlative x/y/yaw
   /// search against the map and registered from the best candidates; if none fits, the reset
-  /// above applies. Runs before the reset; off by default (trigger_ratio 0).
+  /// above applies. Runs before the reset; on by default (trigger_ratio 0.5).
   GlobalPoseSearchConfig global_search;
 };
 
