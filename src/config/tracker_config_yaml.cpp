@@ -166,6 +166,18 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node, const TrackerConf
   read_scales(recovery, rec.motion_scales);
   recovery.read("share_smoothing", rec.share_smoothing);
   recovery.read("reset_ratio", rec.reset_ratio);
+  YamlSection search(recovery.child("global_search"), "recovery.global_search");
+  GlobalPoseSearchConfig& gs = rec.global_search;
+  search.read("trigger_ratio", gs.trigger_ratio);
+  search.read("range_xy", gs.range_xy);
+  search.read("range_yaw_deg", gs.range_yaw_deg);
+  search.read("coarse_step_xy", gs.coarse_step_xy);
+  search.read("coarse_step_yaw_deg", gs.coarse_step_yaw_deg);
+  search.read("levels", gs.levels);
+  search.read("candidates", gs.candidates);
+  search.read("max_sources", gs.max_sources);
+  search.read("accept_ratio", gs.accept_ratio);
+  search.reject_unknown();
   recovery.reject_unknown();
 
   YamlSection keyframe(root.child("keyframe"), "keyframe");
@@ -258,6 +270,18 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "motion_scales" << YAML::Value << YAML::Flow << c.recovery.motion_scales;
   out << YAML::Key << "share_smoothing" << YAML::Value << c.recovery.share_smoothing;
   out << YAML::Key << "reset_ratio" << YAML::Value << c.recovery.reset_ratio;
+  const GlobalPoseSearchConfig& gs = c.recovery.global_search;
+  out << YAML::Key << "global_search" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "trigger_ratio" << YAML::Value << gs.trigger_ratio;
+  out << YAML::Key << "range_xy" << YAML::Value << gs.range_xy;
+  out << YAML::Key << "range_yaw_deg" << YAML::Value << gs.range_yaw_deg;
+  out << YAML::Key << "coarse_step_xy" << YAML::Value << gs.coarse_step_xy;
+  out << YAML::Key << "coarse_step_yaw_deg" << YAML::Value << gs.coarse_step_yaw_deg;
+  out << YAML::Key << "levels" << YAML::Value << gs.levels;
+  out << YAML::Key << "candidates" << YAML::Value << gs.candidates;
+  out << YAML::Key << "max_sources" << YAML::Value << gs.max_sources;
+  out << YAML::Key << "accept_ratio" << YAML::Value << gs.accept_ratio;
+  out << YAML::EndMap;
   out << YAML::EndMap;
   out << YAML::Key << "keyframe" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "distance" << YAML::Value << c.keyframe.distance;

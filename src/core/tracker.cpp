@@ -156,6 +156,32 @@ FrameResult Tracker::process(const PointCloud& raw) {
           frame.recovered = true;
         }
       }
+      const GlobalPoseSearchConfig& search = recovery.global_search;
+      if (search.trigger_ratio > 0.0 && share < search.trigger_ratio * typical_share_) {
+        // Beyond every scaled start: a break. Locate the scan in the map, register from the
+        // best candidates, keep one only if it fits about as well as frames usually do.
+        frame.pose_searched = true;
+        const auto start = std::chrono::steady_clock::now();
+        const std::vector<PoseCandidate> candidates = search_global_pose(
+            search_points(registration.source, predicted.linear(), search.max_sources), map_, pose_,
+            predicted, search);
+        registration.register_ms += elapsed_ms(start);
+        for (const PoseCandidate& candidate : candidates) {
+          ScanRegistration other =
+              register_scan(scan, voxelizer_, map_, *search_, candidate.pose, config_.registration);
+          const double other_share = other.result.valid ? inlier_share(other) : 0.0;
+          registration.voxelize_ms += other.voxelize_ms;
+          registration.register_ms += other.register_ms;
+          if (other_share > share && other_share >= search.accept_ratio * typical_share_) {
+            other.voxelize_ms = registration.voxelize_ms;
+            other.register_ms = registration.register_ms;
+            registration = std::move(other);
+            share = other_share;
+            frame.pose_found = true;
+            frame.recovered = true;
+          }
+        }
+      }
       // The voxeliser now holds the last try's grid voxels: re-cut the kept one's grid.
       voxelizer_.voxelize(scan, registration.grid_pose);
     }
@@ -219,7 +245,9 @@ FrameResult Tracker::process(const PointCloud& raw) {
     frame.times.map_update_ms = elapsed_ms(start);
   }
 
-  velocity_ = frames_ == 0 ? Eigen::Isometry3d::Identity() : pose_.inverse() * estimate;
+  // A pose found by the global search spans the missing frames: the velocity stays the last one.
+  if (!frame.pose_found)
+    velocity_ = frames_ == 0 ? Eigen::Isometry3d::Identity() : pose_.inverse() * estimate;
   pose_ = estimate;
   frame.pose = estimate;
   ++frames_;

@@ -97,6 +97,7 @@ void validate(const TrackerConfig& c) {
           rec.share_smoothing, "in (0, 1]");
   require(std::isfinite(rec.reset_ratio) && rec.reset_ratio >= 0.0 && rec.reset_ratio < 1.0,
           "recovery.reset_ratio", rec.reset_ratio, "0 (off) up to, not including, 1");
+  validate(rec.global_search);
   require(c.keyframe.distance >= 0.0, "keyframe.distance", c.keyframe.distance, "at least 0");
   require(c.keyframe.angle_deg >= 0.0, "keyframe.angle_deg", c.keyframe.angle_deg, "at least 0");
   validate(c.deskew);

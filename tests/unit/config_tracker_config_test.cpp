@@ -47,12 +47,26 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   config.registration.max_isotropy = 0.125;
   config.registration.line_gate = 0.0625;
   config.recovery.reset_ratio = 0.375;
+  config.recovery.global_search.trigger_ratio = 0.4375;
+  config.recovery.global_search.range_xy = 12.5;
+  config.recovery.global_search.range_yaw_deg = 30.0;
+  config.recovery.global_search.levels = 3;
+  config.recovery.global_search.candidates = 5;
+  config.recovery.global_search.max_sources = 300;
+  config.recovery.global_search.accept_ratio = 0.75;
   const TrackerConfig back = tracker_config_from_yaml(YAML::Load(tracker_config_to_yaml(config)));
   EXPECT_EQ(tracker_config_to_yaml(back), tracker_config_to_yaml(config));
   EXPECT_EQ(back.voxelizer.voxel_size, 2.5);
   EXPECT_EQ(back.registration.correspondence, CorrespondenceMethod::kVoxel27);
   EXPECT_EQ(back.registration.line_gate, 0.0625);
   EXPECT_EQ(back.recovery.reset_ratio, 0.375);
+  EXPECT_EQ(back.recovery.global_search.trigger_ratio, 0.4375);
+  EXPECT_EQ(back.recovery.global_search.range_xy, 12.5);
+  EXPECT_EQ(back.recovery.global_search.range_yaw_deg, 30.0);
+  EXPECT_EQ(back.recovery.global_search.levels, 3);
+  EXPECT_EQ(back.recovery.global_search.candidates, 5);
+  EXPECT_EQ(back.recovery.global_search.max_sources, 300);
+  EXPECT_EQ(back.recovery.global_search.accept_ratio, 0.75);
 }
 
 TEST(TrackerConfigYaml, ErrorsNameKeyAndValue) {
@@ -83,6 +97,23 @@ TEST(TrackerConfigYaml, ErrorsNameKeyAndValue) {
             std::string::npos);
   EXPECT_NE(error_of("recovery: {reset_ratio: 1}").find("recovery.reset_ratio: 1"),
             std::string::npos);
+  EXPECT_NE(error_of("recovery: {global_search: {trigger_ratio: 1}}")
+                .find("recovery.global_search.trigger_ratio: 1"),
+            std::string::npos);
+  EXPECT_NE(error_of("recovery: {global_search: {range_xy: 0}}")
+                .find("recovery.global_search.range_xy: 0"),
+            std::string::npos);
+  EXPECT_NE(error_of("recovery: {global_search: {coarse_step_xy: 0.01}}")
+                .find("recovery.global_search.coarse_step_xy: 0.01"),
+            std::string::npos);
+  EXPECT_NE(
+      error_of("recovery: {global_search: {levels: 0}}").find("recovery.global_search.levels: 0"),
+      std::string::npos);
+  EXPECT_NE(error_of("recovery: {global_search: {accept_ratio: 0}}")
+                .find("recovery.global_search.accept_ratio: 0"),
+            std::string::npos);
+  EXPECT_NE(error_of("recovery: {global_search: {radius: 3}}").find("global_search.radius"),
+            std::string::npos);
   EXPECT_NE(error_of("registration: {max_iterations: 0}").find("registration.max_iterations: 0"),
             std::string::npos);
 }
@@ -104,7 +135,10 @@ TEST(TrackerConfigYaml, InfinityAndNanAreRejectedForEveryNumber) {
                         "registration: {max_correspondence_distance: %s}",
                         "keyframe: {distance: %s}",
                         "keyframe: {angle_deg: %s}",
-                        "recovery: {reset_ratio: %s}"};
+                        "recovery: {reset_ratio: %s}",
+                        "recovery: {global_search: {trigger_ratio: %s}}",
+                        "recovery: {global_search: {range_xy: %s}}",
+                        "recovery: {global_search: {accept_ratio: %s}}"};
   for (const char* key : keys) {
     for (const char* value : {".inf", "+.inf", "-.inf", ".nan"}) {
       char yaml[128];

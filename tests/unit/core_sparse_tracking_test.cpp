@@ -284,9 +284,12 @@ double worst_after_break(const std::vector<FrameResult>& frames,
   return worst;
 }
 
+/// The reset alone: without the global search (on by default), which would find the break's pose
+/// before the reset is considered.
 TrackerConfig reset_config(double ratio) {
   TrackerConfig config;
   config.recovery.reset_ratio = ratio;
+  config.recovery.global_search.trigger_ratio = 0.0;
   return config;
 }
 
@@ -316,6 +319,94 @@ TEST(SparseTracking, NoResetWhenFramesAreOnlyDropped) {
   std::vector<FrameResult> frames;
   EXPECT_LT(worst_step_error(drive(dropped_frames()), reset_config(0.5), &frames), 0.15);
   for (const FrameResult& f : frames) EXPECT_FALSE(f.map_reset);
+}
+
+/// A break with a turn (docs/accuracy.md "Breaks in the real VLP-16 drive": 5-16 m and
+/// 20-40 deg between two files): 1 m a frame along the street, then 12 m and 30 deg of yaw
+/// between two files, then 1 m a frame again with the new heading.
+std::vector<Eigen::Isometry3d> turning_break_drive(double jump = 12.0, double turn_deg = 30.0) {
+  std::vector<Eigen::Isometry3d> poses;
+  double x = 0.0, yaw = 0.0;
+  for (int i = 0; i < 21; ++i) {
+    if (i == 10) {
+      x += jump;
+      yaw += turn_deg * M_PI / 180.0;
+    } else if (i > 0) {
+      x += 1.0;
+    }
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = so3_exp(Eigen::Vector3d(0.0, 0.0, yaw));
+    pose.translation() = Eigen::Vector3d(x, 0.3 * std::sin(x / 25.0), 0.0);
+    poses.push_back(pose);
+  }
+  return poses;
+}
+
+TrackerConfig search_config(double trigger) {
+  TrackerConfig config;
+  config.recovery.global_search.trigger_ratio = trigger;
+  return config;
+}
+
+struct BreakError {
+  double metres, degrees;
+};
+
+/// Error of the motion the tracker estimated over frame `i` (from i - 1) against the truth.
+BreakError step_error(const std::vector<FrameResult>& frames,
+                      const std::vector<Eigen::Isometry3d>& truth, std::size_t i) {
+  const Eigen::Isometry3d expected = truth[i - 1].inverse() * truth[i];
+  const Eigen::Isometry3d got = frames[i - 1].pose.inverse() * frames[i].pose;
+  const Eigen::Isometry3d error = expected.inverse() * got;
+  return {error.translation().norm(), Eigen::AngleAxisd(error.linear()).angle() * 180.0 / M_PI};
+}
+
+TEST(SparseTracking, TheGlobalSearchFindsThePoseAcrossATurningBreak) {
+  const auto truth = turning_break_drive();
+  std::vector<FrameResult> frames;
+  worst_step_error(truth, search_config(0.5), &frames);
+  std::vector<std::size_t> searched;
+  for (std::size_t i = 0; i < frames.size(); ++i)
+    if (frames[i].pose_searched) searched.push_back(i);
+  ASSERT_EQ(searched, std::vector<std::size_t>{10}) << "only the frame after the break searches";
+  EXPECT_TRUE(frames[10].pose_found);
+  EXPECT_TRUE(frames[10].registered);
+  const BreakError at_break = step_error(frames, truth, 10);
+  EXPECT_LT(at_break.metres, 0.2);
+  EXPECT_LT(at_break.degrees, 1.0);
+  // The velocity is not learnt from the break's motion: the frames after it follow.
+  EXPECT_LT(worst_after_break(frames, truth, 10), 0.15);
+  for (const FrameResult& f : frames) EXPECT_FALSE(f.map_reset);
+}
+
+TEST(SparseTracking, WithoutTheSearchTheTurningBreakIsNotFound) {
+  // The failure the search is for: the recovery's scaled constant-velocity starts, with and
+  // without the reset, do not reach a pose 12 m and 30 deg away.
+  const auto truth = turning_break_drive();
+  for (double reset : {0.0, 0.5}) {
+    std::vector<FrameResult> frames;
+    worst_step_error(truth, reset_config(reset), &frames);
+    for (const FrameResult& f : frames) EXPECT_FALSE(f.pose_searched);
+    const BreakError at_break = step_error(frames, truth, 10);
+    EXPECT_TRUE(at_break.metres > 0.2 || at_break.degrees > 1.0)
+        << "reset " << reset << ": " << at_break.metres << " m, " << at_break.degrees << " deg";
+  }
+}
+
+TEST(SparseTracking, TheDefaultsSearchAcrossABreak) {
+  const auto truth = turning_break_drive();
+  std::vector<FrameResult> frames;
+  worst_step_error(truth, TrackerConfig{}, &frames);
+  EXPECT_TRUE(frames[10].pose_found);
+  EXPECT_LT(step_error(frames, truth, 10).metres, 0.2);
+}
+
+TEST(SparseTracking, TheGlobalSearchDoesNotRunOnOrdinaryFrames) {
+  for (const auto& truth : {drive(std::vector<double>(20, 1.0)), drive(dropped_frames())}) {
+    std::vector<FrameResult> frames;
+    EXPECT_LT(worst_step_error(truth, search_config(0.5), &frames), 0.15);
+    for (const FrameResult& f : frames) EXPECT_FALSE(f.pose_searched);
+  }
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // true times and ground truth.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -37,6 +38,42 @@ TEST(SimFrameSelection, DropsFramesWithBoundedGaps) {
   EXPECT_NE(sim::select_frames(1000, opt, 43), kept);
   EXPECT_EQ(sim::select_frames(10, sim::FrameDropOptions{}, 42).size(), 10u);
   opt.probability = 1.0;
+  EXPECT_THROW(sim::select_frames(10, opt, 1), std::invalid_argument);
+}
+
+TEST(SimFrameSelection, DropsBurstsOfTheConfiguredLength) {
+  sim::FrameDropOptions opt;
+  opt.burst_probability = 0.05;
+  opt.burst_min = 5;
+  opt.burst_max = 12;
+  const auto kept = sim::select_frames(2000, opt, 7);
+  ASSERT_FALSE(kept.empty());
+  EXPECT_EQ(kept.front(), 0u);
+  std::size_t bursts = 0, shortest = 1000, longest = 0;
+  for (std::size_t k = 1; k < kept.size(); ++k) {
+    const std::size_t dropped = kept[k] - kept[k - 1] - 1;
+    if (dropped == 0) continue;
+    ++bursts;
+    shortest = std::min(shortest, dropped);
+    longest = std::max(longest, dropped);
+  }
+  // Without single drops every gap is one burst: lengths within 5..12, both ends reached.
+  EXPECT_GT(bursts, 20u);
+  EXPECT_EQ(shortest, opt.burst_min);
+  EXPECT_EQ(longest, opt.burst_max);
+  EXPECT_EQ(sim::select_frames(2000, opt, 7), kept);
+  // With single drops as well, gaps can be longer than a burst, never shorter than one frame.
+  opt.probability = 0.3;
+  const auto both = sim::select_frames(2000, opt, 7);
+  EXPECT_LT(both.size(), kept.size());
+  opt.burst_min = 6;
+  opt.burst_max = 5;
+  EXPECT_THROW(sim::select_frames(10, opt, 1), std::invalid_argument);
+  opt.burst_min = 0;
+  opt.burst_max = 5;
+  EXPECT_THROW(sim::select_frames(10, opt, 1), std::invalid_argument);
+  opt.burst_min = 5;
+  opt.burst_probability = 1.0;
   EXPECT_THROW(sim::select_frames(10, opt, 1), std::invalid_argument);
 }
 

@@ -27,6 +27,8 @@ void RunStats::add(const FrameResult& frame) {
   retries_ += frame.retried ? 1 : 0;
   recoveries_ += frame.recovered ? 1 : 0;
   map_resets_ += frame.map_reset ? 1 : 0;
+  pose_searches_ += frame.pose_searched ? 1 : 0;
+  poses_found_ += frame.pose_found ? 1 : 0;
   self_hits_ += static_cast<std::size_t>(frame.self_hits);
 }
 
@@ -86,6 +88,8 @@ std::string RunStats::to_json(const std::string& mode, const std::string& sensor
                 {"recovery_retries", retries_},
                 {"recovery_kept", recoveries_},
                 {"map_resets", map_resets_},
+                {"global_searches", pose_searches_},
+                {"global_search_kept", poses_found_},
                 {"mean_self_hits_dropped", self_hits_ / n},
                 {"keyframes", keyframes_},
                 {"registration_failures", failures_},

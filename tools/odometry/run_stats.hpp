@@ -49,6 +49,8 @@ class RunStats {
   std::size_t retries_ = 0;
   std::size_t recoveries_ = 0;
   std::size_t map_resets_ = 0;
+  std::size_t pose_searches_ = 0;
+  std::size_t poses_found_ = 0;
   std::size_t self_hits_ = 0;
   std::size_t deskewed_ = 0;
   struct Skipped {

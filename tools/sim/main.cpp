@@ -180,6 +180,8 @@ int main(int argc, char** argv) {
   std::optional<double> sweep_start, drop_frames, oncoming, pedestrians, ground_bumps, grass_height,
       foliage_depth, vegetation;
   std::optional<std::size_t> max_gap;
+  std::optional<double> drop_bursts;
+  std::string burst_length;
   app.add_option("--realism", realism,
                  "Preset of what real drives add: none (default: the simulator as it was) | "
                  "street (all of the options below, as on a real VLP-16 drive)")
@@ -210,6 +212,12 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 0.95));
   app.add_option("--max-gap", max_gap, "Longest run of dropped frames (default 3)")
       ->check(CLI::Range(1, 100));
+  app.add_option("--drop-bursts", drop_bursts,
+                 "Probability that a burst of dropped frames starts at a frame (breaks of many "
+                 "frames, as in the real VLP-16 drive; independent of --drop-frames)")
+      ->check(CLI::Range(0.0, 0.5));
+  app.add_option("--burst-length", burst_length,
+                 "Frames dropped by one burst, MIN:MAX (default 5:15)");
   auto* lead = app.add_flag("--lead-vehicle", lead_on,
                             "A car ahead in the ego lane with a slowly varying gap");
   app.add_flag("--no-lead-vehicle", lead_off, "No lead car (overrides --realism)")->excludes(lead);
@@ -293,6 +301,25 @@ int main(int argc, char** argv) {
     }
     if (drop_frames) real.drops.probability = *drop_frames;
     if (max_gap) real.drops.max_gap = *max_gap;
+    if (drop_bursts) real.drops.burst_probability = *drop_bursts;
+    if (!burst_length.empty()) {
+      const std::size_t colon = burst_length.find(':');
+      std::size_t lo = 0, hi = 0;
+      bool ok = colon != std::string::npos;
+      try {
+        std::size_t used_lo = 0, used_hi = 0;
+        if (ok) {
+          lo = std::stoul(burst_length.substr(0, colon), &used_lo);
+          hi = std::stoul(burst_length.substr(colon + 1), &used_hi);
+          ok = used_lo == colon && used_hi == burst_length.size() - colon - 1 && hi <= 1000;
+        }
+      } catch (const std::exception&) {
+        ok = false;
+      }
+      if (!ok) throw std::invalid_argument("--burst-length must be MIN:MAX, got " + burst_length);
+      real.drops.burst_min = lo;
+      real.drops.burst_max = hi;
+    }
     if (lead_on || lead_off) real.traffic.lead_vehicle = lead_on;
     if (oncoming) real.traffic.oncoming_per_km = *oncoming;
     if (pedestrians) real.traffic.pedestrians_per_km = *pedestrians;
@@ -308,12 +335,13 @@ int main(int argc, char** argv) {
     spdlog::info(
         "realism {}: sweep motion {}, start {} deg {}, self-hits {} boxes, mount roll {} pitch {} "
         "deg, range noise {} m, bumps {} m, grass {} m, foliage {} m, lead car {}, "
-        "oncoming {}/km, pedestrians {}/km, frame drops {} (max gap {})",
+        "oncoming {}/km, pedestrians {}/km, frame drops {} (max gap {}), bursts {} ({}:{} frames)",
         realism, rig.sweep.motion, rig.sweep.start_azimuth_deg, rig.sweep.clockwise ? "cw" : "ccw",
         rig.body.boxes.size(), rig.mount.roll_deg, rig.mount.pitch_deg, model.range_noise_sigma,
         real.world.ground_bump_amplitude, real.world.grass_height, real.world.foliage_penetration,
         real.traffic.lead_vehicle, real.traffic.oncoming_per_km, real.traffic.pedestrians_per_km,
-        real.drops.probability, real.drops.max_gap);
+        real.drops.probability, real.drops.max_gap, real.drops.burst_probability,
+        real.drops.burst_min, real.drops.burst_max);
 
     const auto t_world = std::chrono::steady_clock::now();
     // The world covers the base trajectory around all vehicles' windows (plus 150 m), then the
@@ -379,7 +407,7 @@ int main(int argc, char** argv) {
       wo.rig = rig;
       wo.traffic = traffic.get();
       wo.write_pcd = rig.sweep.motion;
-      if (real.drops.probability > 0) {
+      if (real.drops.probability > 0 || real.drops.burst_probability > 0) {
         wo.frames = sim::select_frames(vehicles[k].sensor_poses.size(), real.drops,
                                        sim::hash_combine(seed, 2000 + k));
         spdlog::info("{}: {} of {} frames kept", dir, wo.frames.size(),

@@ -61,6 +61,11 @@ struct FrameResult {
   /// No start fitted (RecoveryConfig::reset_ratio): the map was restarted from this scan at
   /// the constant-velocity prediction (the pose); `registered` is false.
   bool map_reset = false;
+  /// The global x/y/yaw search ran (RecoveryConfig::global_search); `pose_found` if a
+  /// registration from one of its candidates was kept (the velocity is then not learnt from
+  /// this frame's motion, which spans the missing frames).
+  bool pose_searched = false;
+  bool pose_found = false;
   int source_distributions = 0;
   int correspondences = 0;
   /// The scan's points were moved by the motion within the sweep before registration

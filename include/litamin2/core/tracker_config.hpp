@@ -4,6 +4,7 @@
 
 #include "litamin2/core/config_error.hpp"
 #include "litamin2/core/deskew.hpp"
+#include "litamin2/core/global_pose_search.hpp"
 #include "litamin2/core/registration_config.hpp"
 #include "litamin2/core/scan_filter.hpp"
 #include "litamin2/core/voxel_map.hpp"
@@ -49,6 +50,11 @@ struct RecoveryConfig {
   /// On the real VLP-16 drive consecutive files agree under no rigid motion on many frames
   /// (docs/accuracy.md, "Breaks in the real VLP-16 drive").
   double reset_ratio = 0.0;
+  /// A wider search after the retries (global_pose_search.hpp): a scan whose best share is still
+  /// below global_search.trigger_ratio of the typical share is located by a correlative x/y/yaw
+  /// search against the map and registered from the best candidates; if none fits, the reset
+  /// above applies. Runs before the reset; on by default (trigger_ratio 0.5).
+  GlobalPoseSearchConfig global_search;
 };
 
 struct TrackerConfig {
