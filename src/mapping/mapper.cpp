@@ -190,6 +190,7 @@ OptimizeSummary Mapper::optimize() {
   summary.odometry_edges = local.odometry_edges;
   summary.loop_edges = local.loop_edges;
   summary.iterations = local.iterations;
+  summary.held_ends = local.held_ends;
   summary.initial_cost = local.initial_cost;
   summary.final_cost = local.final_cost;
   summary.milliseconds = elapsed_ms(start);

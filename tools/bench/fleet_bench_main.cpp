@@ -52,6 +52,7 @@ struct Options {
   double spacing = 2.0;
   double search_spacing = 10.0;
   double loop_spacing = 0.0;
+  int local_hold_loops = mapping::PoseGraphConfig{}.local_hold_loops;
   int segment_keyframes = 10;
   int tile_segment_keyframes = 10;
   int merge_confirmations = 2;
@@ -135,6 +136,8 @@ int main(int argc, char** argv) {
   app.add_option("--spacing", o.spacing, "metres between keyframes");
   app.add_option("--search-spacing", o.search_spacing, "place_recognition.search_spacing, metres");
   app.add_option("--loop-spacing", o.loop_spacing, "place_recognition.loop_spacing, metres");
+  app.add_option("--local-hold-loops", o.local_hold_loops, "pose_graph.local_hold_loops")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--segment-keyframes", o.segment_keyframes, "pose_graph.segment_keyframes");
   app.add_option("--tile-segment-keyframes", o.tile_segment_keyframes,
                  "map_tiles.segment_keyframes (0: tiles fused keyframe by keyframe)")
@@ -165,6 +168,7 @@ int main(int argc, char** argv) {
   mapping::MapperConfig mapper;
   mapper.place.search_spacing = o.search_spacing;
   mapper.place.loop_spacing = o.loop_spacing;
+  mapper.graph.local_hold_loops = o.local_hold_loops;
   mapper.graph.segment_keyframes = o.segment_keyframes;
   mapper.place.merge_confirmations = o.merge_confirmations;
   mapper.graph.odometry_covariance = mapping::OdometryCovariance::kDistance;
@@ -241,7 +245,8 @@ int main(int argc, char** argv) {
     std::size_t reported_keyframes = 0;
     double last_poses_cpu = 0.0, last_summary_cpu = 0.0, last_tiles_cpu = 0.0;
     // The local optimisations since the last report: solves, keyframes, loop edges, iterations.
-    std::size_t local_solves = 0, local_keyframes = 0, local_loop_edges = 0, local_iterations = 0;
+    std::size_t local_solves = 0, local_keyframes = 0, local_loop_edges = 0, local_iterations = 0,
+                local_held = 0;
     // On the mapping thread after each turn: its CPU, loop latencies and a report per 10k.
     worker.observe([&](const TurnReport& turn) {
       keyframes += turn.added;
@@ -250,6 +255,7 @@ int main(int argc, char** argv) {
         local_keyframes += static_cast<std::size_t>(turn.optimization.keyframes);
         local_loop_edges += static_cast<std::size_t>(turn.optimization.loop_edges);
         local_iterations += static_cast<std::size_t>(turn.optimization.iterations);
+        local_held += static_cast<std::size_t>(turn.optimization.held_ends);
       }
       batches.emplace_back(keyframes, turn.cpu_s);
       loop_latency_ms.insert(loop_latency_ms.end(), turn.loop_latency_ms.begin(),
@@ -294,11 +300,12 @@ int main(int argc, char** argv) {
       const double solves = static_cast<double>(std::max<std::size_t>(local_solves, 1));
       std::fprintf(stderr,
                    "  local solves %zu: per solve %.0f keyframes, %.0f loop edges, %.1f "
-                   "iterations\n",
+                   "iterations, %.1f older ends held\n",
                    local_solves, static_cast<double>(local_keyframes) / solves,
                    static_cast<double>(local_loop_edges) / solves,
-                   static_cast<double>(local_iterations) / solves);
-      local_solves = local_keyframes = local_loop_edges = local_iterations = 0;
+                   static_cast<double>(local_iterations) / solves,
+                   static_cast<double>(local_held) / solves);
+      local_solves = local_keyframes = local_loop_edges = local_iterations = local_held = 0;
       last_ts = ts;
       last_ms = ms;
       last_in = in;
@@ -422,6 +429,7 @@ int main(int argc, char** argv) {
   }
   const Json summary = {
       {"vehicles", o.vehicles},
+      {"local_hold_loops", o.local_hold_loops},
       {"keyframes", keyframes},
       {"distributions_per_keyframe", keyframes ? distributions_total / keyframes : 0},
       {"loops", loops},
