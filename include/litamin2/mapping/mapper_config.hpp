@@ -35,6 +35,12 @@ struct PlaceRecognitionConfig {
   /// (0 = off): drift is small enough that a revisit is found by position, and the estimate
   /// gives the registration a starting pose.
   double proximity_radius = 30.0;
+  /// The proximity candidate is verified only when its place descriptor is within this
+  /// distance of the query's (match_descriptors, 0..1: a comparison of the two descriptors
+  /// before a registration of ~10 ms); 0 = always verified. A keyframe near the pose estimate that
+  /// looks unlike the query (another street through a corner, the view blocked) costs a
+  /// registration and is then rejected.
+  double proximity_max_descriptor_distance = 0.0;
   PlaceSearch search = PlaceSearch::kIndexed;
   /// A stream's keyframes are searched for loops (and their candidates verified) only every
   /// this many metres of its odometry path (0 = every keyframe). A fleet revisiting its
