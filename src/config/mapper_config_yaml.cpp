@@ -23,6 +23,8 @@ MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
   place.read_range("max_descriptor_distance", p.max_descriptor_distance, 0.0, 1.0);
   place.read_range("min_travel_gap", p.min_travel_gap, 0.0, 1e6);
   place.read_range("proximity_radius", p.proximity_radius, 0.0, 1e4);
+  place.read_range("verification_budget_per_keyframe", p.verification_budget_per_keyframe, 0.0,
+                   1e3);
   place.read_range("proximity_max_descriptor_distance", p.proximity_max_descriptor_distance, 0.0,
                    1.0);
   place.read_enum<PlaceSearch>(
@@ -97,6 +99,8 @@ std::string mapper_config_to_yaml(const MapperConfig& c) {
   out << YAML::Key << "max_descriptor_distance" << YAML::Value << c.place.max_descriptor_distance;
   out << YAML::Key << "min_travel_gap" << YAML::Value << c.place.min_travel_gap;
   out << YAML::Key << "proximity_radius" << YAML::Value << c.place.proximity_radius;
+  out << YAML::Key << "verification_budget_per_keyframe" << YAML::Value
+      << c.place.verification_budget_per_keyframe;
   out << YAML::Key << "proximity_max_descriptor_distance" << YAML::Value
       << c.place.proximity_max_descriptor_distance;
   out << YAML::Key << "search" << YAML::Value

@@ -53,6 +53,7 @@ struct Options {
   double search_spacing = 10.0;
   double loop_spacing = 0.0;
   int local_hold_loops = mapping::PoseGraphConfig{}.local_hold_loops;
+  double verification_budget = mapping::PlaceRecognitionConfig{}.verification_budget_per_keyframe;
   double proximity_max_descriptor_distance =
       mapping::PlaceRecognitionConfig{}.proximity_max_descriptor_distance;
   int segment_keyframes = 10;
@@ -140,6 +141,9 @@ int main(int argc, char** argv) {
   app.add_option("--loop-spacing", o.loop_spacing, "place_recognition.loop_spacing, metres");
   app.add_option("--local-hold-loops", o.local_hold_loops, "pose_graph.local_hold_loops")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--verification-budget", o.verification_budget,
+                 "place_recognition.verification_budget_per_keyframe")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--proximity-max-descriptor-distance", o.proximity_max_descriptor_distance,
                  "place_recognition.proximity_max_descriptor_distance")
       ->check(CLI::Range(0.0, 1.0));
@@ -174,6 +178,7 @@ int main(int argc, char** argv) {
   mapper.place.search_spacing = o.search_spacing;
   mapper.place.loop_spacing = o.loop_spacing;
   mapper.graph.local_hold_loops = o.local_hold_loops;
+  mapper.place.verification_budget_per_keyframe = o.verification_budget;
   mapper.place.proximity_max_descriptor_distance = o.proximity_max_descriptor_distance;
   mapper.graph.segment_keyframes = o.segment_keyframes;
   mapper.place.merge_confirmations = o.merge_confirmations;
@@ -308,14 +313,15 @@ int main(int argc, char** argv) {
       std::fprintf(stderr,
                    "  local solves %zu: per solve %.0f keyframes, %.0f loop edges, %.1f "
                    "iterations, %.1f older ends held; proximity candidates %zu verified "
-                   "(%zu accepted), %zu skipped by descriptor\n",
+                   "(%zu accepted), %zu skipped by descriptor; %zu searches over budget\n",
                    local_solves, static_cast<double>(local_keyframes) / solves,
                    static_cast<double>(local_loop_edges) / solves,
                    static_cast<double>(local_iterations) / solves,
                    static_cast<double>(local_held) / solves,
                    ms.proximity_candidates - last_ms.proximity_candidates,
                    ms.proximity_verified - last_ms.proximity_verified,
-                   ms.proximity_skipped - last_ms.proximity_skipped);
+                   ms.proximity_skipped - last_ms.proximity_skipped,
+                   ms.searches_over_budget - last_ms.searches_over_budget);
       local_solves = local_keyframes = local_loop_edges = local_iterations = local_held = 0;
       last_ts = ts;
       last_ms = ms;
@@ -443,6 +449,7 @@ int main(int argc, char** argv) {
       {"vehicles", o.vehicles},
       {"local_hold_loops", o.local_hold_loops},
       {"loop_spacing", o.loop_spacing},
+      {"verification_budget_per_keyframe", o.verification_budget},
       {"proximity_max_descriptor_distance", o.proximity_max_descriptor_distance},
       {"keyframes", keyframes},
       {"distributions_per_keyframe", keyframes ? distributions_total / keyframes : 0},
@@ -467,6 +474,7 @@ int main(int argc, char** argv) {
       {"proximity_candidates_verified", final_stats.proximity_candidates},
       {"proximity_candidates_accepted", final_stats.proximity_verified},
       {"proximity_candidates_skipped", final_stats.proximity_skipped},
+      {"searches_over_budget", final_stats.searches_over_budget},
       {"ate_m", ate},
       {"keyframes_in_map_frame", in_map},
       {"vehicles_in_map_frame", merged.size()},

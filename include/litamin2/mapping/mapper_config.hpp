@@ -55,6 +55,13 @@ struct PlaceRecognitionConfig {
   /// vehicles' maps merge; one loop every loop_spacing metres of a revisit is what holds the
   /// odometry's drift. The searches of other groups go on, so that merges are still found.
   double loop_spacing = 0.0;
+  /// Verifications a place search of all keyframes may spend, on average per keyframe added
+  /// (0 = no limit): each keyframe adds this to an allowance (up to what 100 keyframes add),
+  /// each candidate verified by such a search takes one, and while less than one is left the
+  /// searches look only at other groups' keyframes (as within loop_spacing), so merges are
+  /// still found. A fleet on streets it has mapped finds a candidate at nearly every search
+  /// (~10 ms each); this bounds their cost per keyframe whatever the map's coverage.
+  double verification_budget_per_keyframe = 0.0;
   /// A loop between two groups of streams joins them only once this many verified loops
   /// between the same two groups agree on the transform between their frames (1 = the first
   /// loop joins them; merge_confirmation.hpp) ...
