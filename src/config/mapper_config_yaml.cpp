@@ -23,6 +23,10 @@ MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
   place.read_range("max_descriptor_distance", p.max_descriptor_distance, 0.0, 1.0);
   place.read_range("min_travel_gap", p.min_travel_gap, 0.0, 1e6);
   place.read_range("proximity_radius", p.proximity_radius, 0.0, 1e4);
+  place.read_range("verification_budget_per_keyframe", p.verification_budget_per_keyframe, 0.0,
+                   1e3);
+  place.read_range("proximity_max_descriptor_distance", p.proximity_max_descriptor_distance, 0.0,
+                   1.0);
   place.read_enum<PlaceSearch>(
       "search", p.search, {{"indexed", PlaceSearch::kIndexed}, {"linear", PlaceSearch::kLinear}});
   place.read_range("search_spacing", p.search_spacing, 0.0, 1e4);
@@ -66,6 +70,7 @@ MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
   graph.read_range("level_prior_sigma_deg", g.level_prior_sigma_deg, 0.0, 90.0);
   graph.read_range("local_max_keyframes", g.local_max_keyframes, 1, 1'000'000);
   graph.read_range("local_hops", g.local_hops, 0, 10'000);
+  graph.read_range("local_hold_loops", g.local_hold_loops, 0, 1'000'000);
   graph.read_range("segment_keyframes", g.segment_keyframes, 1, 100'000);
   graph.read_range("max_iterations", g.max_iterations, 1, 10000);
   graph.read_range("threads", g.threads, 1, 256);
@@ -94,6 +99,10 @@ std::string mapper_config_to_yaml(const MapperConfig& c) {
   out << YAML::Key << "max_descriptor_distance" << YAML::Value << c.place.max_descriptor_distance;
   out << YAML::Key << "min_travel_gap" << YAML::Value << c.place.min_travel_gap;
   out << YAML::Key << "proximity_radius" << YAML::Value << c.place.proximity_radius;
+  out << YAML::Key << "verification_budget_per_keyframe" << YAML::Value
+      << c.place.verification_budget_per_keyframe;
+  out << YAML::Key << "proximity_max_descriptor_distance" << YAML::Value
+      << c.place.proximity_max_descriptor_distance;
   out << YAML::Key << "search" << YAML::Value
       << (c.place.search == PlaceSearch::kLinear ? "linear" : "indexed");
   out << YAML::Key << "search_spacing" << YAML::Value << c.place.search_spacing;
@@ -135,6 +144,7 @@ std::string mapper_config_to_yaml(const MapperConfig& c) {
   out << YAML::Key << "level_prior_sigma_deg" << YAML::Value << c.graph.level_prior_sigma_deg;
   out << YAML::Key << "local_max_keyframes" << YAML::Value << c.graph.local_max_keyframes;
   out << YAML::Key << "local_hops" << YAML::Value << c.graph.local_hops;
+  out << YAML::Key << "local_hold_loops" << YAML::Value << c.graph.local_hold_loops;
   out << YAML::Key << "segment_keyframes" << YAML::Value << c.graph.segment_keyframes;
   out << YAML::Key << "max_iterations" << YAML::Value << c.graph.max_iterations;
   out << YAML::Key << "threads" << YAML::Value << c.graph.threads;

@@ -102,6 +102,28 @@ bool GraphOptimizer::consistent(const LoopEdge& loop, const Eigen::Isometry3d& f
   return std::max(t, r) <= config_.graph.loop_consistency_sigmas;
 }
 
+bool GraphOptimizer::held_by_loops(std::uint32_t node, const KeyframeGraph& graph,
+                                   const GraphLoops& loops) const {
+  const int needed = config_.graph.local_hold_loops;
+  if (needed <= 0) return false;
+  const KeyframeNode& n = graph.node(node);
+  const auto& chain = graph.groups().at(n.stream).nodes;
+  const auto at = chain.find(n.key.id);
+  int held = 0;
+  auto count = [&](std::uint32_t m) {
+    const auto it = loops.at_node.find(m);
+    if (it != loops.at_node.end()) held += static_cast<int>(it->second.size());
+    return held >= needed;
+  };
+  if (count(at->second)) return true;
+  auto back = at, on = at;
+  for (int hop = 0; hop < config_.graph.local_hops; ++hop) {
+    if (back != chain.begin() && count((--back)->second)) return true;
+    if (std::next(on) != chain.end() && count((++on)->second)) return true;
+  }
+  return false;
+}
+
 LocalOptimization GraphOptimizer::optimize_local(KeyframeGraph& graph, GraphLoops& loops,
                                                  MapperStats& stats) const {
   LocalOptimization out;
@@ -134,9 +156,15 @@ LocalOptimization GraphOptimizer::optimize_local(KeyframeGraph& graph, GraphLoop
   // correction spreads on both sides. Not through checked loops: where a fleet has revisited a
   // place many times, every keyframe has loops and their hops would reach a region as large
   // as the map (the full pass spreads the correction further).
-  std::vector<std::uint32_t> frontier;
+  // An older end held by local_hold_loops checked loops near it stays constant
+  // (PoseGraphConfig::local_hold_loops): it and its neighbourhood are not freed.
+  std::vector<std::uint32_t> frontier, held;
   for (std::uint32_t i : pending) {
-    frontier.push_back(loops.nodes[i].first);
+    const std::uint32_t older = loops.nodes[i].first;
+    if (free.count(older) || !held_by_loops(older, graph, loops))
+      frontier.push_back(older);
+    else
+      held.push_back(older);
     frontier.push_back(loops.nodes[i].second);
   }
   std::set<std::uint32_t> seen(frontier.begin(), frontier.end());
@@ -157,6 +185,12 @@ LocalOptimization GraphOptimizer::optimize_local(KeyframeGraph& graph, GraphLoop
     }
     frontier.swap(next);
   }
+
+  // (Another loop's region may have freed a held end after all.)
+  std::sort(held.begin(), held.end());
+  held.erase(std::unique(held.begin(), held.end()), held.end());
+  out.held_ends = static_cast<int>(
+      std::count_if(held.begin(), held.end(), [&](std::uint32_t n) { return !free.count(n); }));
 
   // The problem: free nodes, then every node an edge ties them to, fixed.
   LocalProblem problem;

@@ -23,8 +23,19 @@ std::optional<LoopEdge> LoopDetector::detect(std::uint32_t query,
   // The nearest keyframe by pose estimate first, then the descriptor's candidate.
   std::vector<LoopCandidate> candidates;
   double t = thread_cpu_seconds();
+  const double max_distance = config_.place.proximity_max_descriptor_distance;
+  bool first_is_proximity = false;
   if (scope == SearchScope::kAll) {
-    if (auto c = proximity_candidate(query, graph)) candidates.push_back(*c);
+    if (auto c = proximity_candidate(query, graph)) {
+      if (max_distance > 0.0 &&
+          match_descriptors(graph.node(query).descriptor, graph.node(c->node).descriptor).distance >
+              max_distance) {
+        ++stats.proximity_skipped;
+      } else {
+        candidates.push_back(*c);
+        first_is_proximity = true;
+      }
+    }
   }
   double now = thread_cpu_seconds();
   cpu.proximity_s += now - t;
@@ -34,8 +45,11 @@ std::optional<LoopEdge> LoopDetector::detect(std::uint32_t query,
   now = thread_cpu_seconds();
   cpu.descriptor_search_s += now - t;
   t = now;
-  for (const LoopCandidate& candidate : candidates) {
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    const LoopCandidate& candidate = candidates[k];
+    const bool proximity = k == 0 && first_is_proximity;
     ++stats.candidates;
+    if (proximity) ++stats.proximity_candidates;
     const VoxelMap submap = submap_of(candidate.node, graph, cache);
     const LoopVerification v = verify_loop(distributions, submap, candidate.initial,
                                            config_.verification, M_PI / config_.place.sectors);
@@ -47,6 +61,7 @@ std::optional<LoopEdge> LoopDetector::detect(std::uint32_t query,
       continue;
     }
     ++stats.verified;
+    if (proximity) ++stats.proximity_verified;
     LoopEdge edge;
     edge.from = graph.node(candidate.node).key;
     edge.to = graph.node(query).key;

@@ -106,6 +106,8 @@ struct Mapper::Impl {
 
   /// Per stream, the path length at its latest verified loop (loop_spacing).
   std::vector<double> last_loop;
+  /// Verifications left to searches of all keyframes (verification_budget_per_keyframe).
+  double verification_allowance = 0.0;
 
   /// Whether the stream's new keyframe at `path` is due a place search (search_spacing), and
   /// in which keyframes: within loop_spacing after the stream's latest loop inside its group,
@@ -119,6 +121,10 @@ struct Mapper::Impl {
     if (config.place.loop_spacing > 0.0 && stream < last_loop.size() && path >= last_loop[stream] &&
         path - last_loop[stream] < config.place.loop_spacing)
       return SearchScope::kOtherGroups;
+    if (config.place.verification_budget_per_keyframe > 0.0 && verification_allowance < 1.0) {
+      ++stats.searches_over_budget;
+      return SearchScope::kOtherGroups;
+    }
     return SearchScope::kAll;
   }
 };
@@ -156,9 +162,16 @@ AddStatus Mapper::add_keyframe(Keyframe keyframe, std::vector<LoopEdge>* new_loo
   ++m.stats.keyframes;
   m.cpu.chain_s += thread_cpu_seconds() - t1;
   const KeyframeNode& stored = m.graph.node(index);
+  const double budget = m.config.place.verification_budget_per_keyframe;
+  if (budget > 0.0)
+    m.verification_allowance = std::min(m.verification_allowance + budget, 100.0 * budget);
   if (const auto scope = m.search_due(stored.stream, stored.path_length)) {
-    if (const auto loop = m.detector.detect(index, keyframe.distributions, m.graph, *m.cache,
-                                            m.stats, m.cpu, *scope)) {
+    const std::size_t candidates_before = m.stats.candidates;
+    const auto loop =
+        m.detector.detect(index, keyframe.distributions, m.graph, *m.cache, m.stats, m.cpu, *scope);
+    if (budget > 0.0 && *scope == SearchScope::kAll)
+      m.verification_allowance -= static_cast<double>(m.stats.candidates - candidates_before);
+    if (loop) {
       const StreamGroups& groups = m.graph.groups();
       const KeyframeNode& from = m.graph.node(static_cast<std::uint32_t>(m.graph.find(loop->from)));
       if (groups.anchor_of(from.stream) == groups.anchor_of(stored.stream)) {
@@ -190,6 +203,7 @@ OptimizeSummary Mapper::optimize() {
   summary.odometry_edges = local.odometry_edges;
   summary.loop_edges = local.loop_edges;
   summary.iterations = local.iterations;
+  summary.held_ends = local.held_ends;
   summary.initial_cost = local.initial_cost;
   summary.final_cost = local.final_cost;
   summary.milliseconds = elapsed_ms(start);

@@ -11,6 +11,11 @@ void validate(const MapperConfig& c) {
   require(c.place.rings >= 2 && c.place.sectors >= 4, "place_recognition grid too small");
   require(c.place.max_range > 0.0, "place_recognition.max_range must be positive");
   require(c.place.ring_key_candidates >= 1, "place_recognition.ring_key_candidates must be >= 1");
+  require(c.place.proximity_max_descriptor_distance >= 0.0 &&
+              c.place.proximity_max_descriptor_distance <= 1.0,
+          "place_recognition.proximity_max_descriptor_distance must be in [0, 1]");
+  require(c.place.verification_budget_per_keyframe >= 0.0,
+          "place_recognition.verification_budget_per_keyframe must be >= 0");
   require(c.verification.min_fitness >= 0.0 && c.verification.min_fitness <= 1.0,
           "verification.min_fitness must be in [0, 1]");
   require(c.map_voxel_size > 0.0, "map_voxel_size must be positive");
@@ -26,6 +31,7 @@ void validate(const MapperConfig& c) {
           "place_recognition.merge_agreement_deg must be in (0, 180]");
   require(c.graph.local_max_keyframes >= 1, "pose_graph.local_max_keyframes must be >= 1");
   require(c.graph.local_hops >= 0, "pose_graph.local_hops must be >= 0");
+  require(c.graph.local_hold_loops >= 0, "pose_graph.local_hold_loops must be >= 0");
   require(c.graph.segment_keyframes >= 1, "pose_graph.segment_keyframes must be >= 1");
 }
 

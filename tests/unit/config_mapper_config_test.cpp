@@ -19,6 +19,9 @@ TEST(MappingConfig, EmittedYamlReadsBack) {
   MapperConfig config;
   config.place.proximity_radius = 7.5;
   config.place.loop_spacing = 40.0;
+  config.place.verification_budget_per_keyframe = 0.25;
+  config.place.proximity_max_descriptor_distance = 0.5;
+  config.graph.local_hold_loops = 3;
   config.verification.min_fitness = 0.7;
   config.verification.max_isotropy = 0.05;
   config.graph.threads = 2;
@@ -46,6 +49,14 @@ TEST(MappingConfig, BadKeysAndValuesAreNamed) {
   EXPECT_NE(message("pose_graph: {threads: many}").find("pose_graph.threads"), std::string::npos);
   EXPECT_NE(message("map_voxel_size: -1").find("map_voxel_size"), std::string::npos);
   EXPECT_NE(message("place_recognition: {loop_spacing: -1}").find("place_recognition.loop_spacing"),
+            std::string::npos);
+  EXPECT_NE(message("place_recognition: {verification_budget_per_keyframe: -1}")
+                .find("place_recognition.verification_budget_per_keyframe"),
+            std::string::npos);
+  EXPECT_NE(message("place_recognition: {proximity_max_descriptor_distance: 2}")
+                .find("place_recognition.proximity_max_descriptor_distance"),
+            std::string::npos);
+  EXPECT_NE(message("pose_graph: {local_hold_loops: -1}").find("pose_graph.local_hold_loops"),
             std::string::npos);
   EXPECT_NE(message("pose_graph: {odometry_covariance: hessian}")
                 .find("pose_graph.odometry_covariance: 'hessian' is not one of: distance, tracker"),

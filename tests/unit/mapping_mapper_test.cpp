@@ -121,6 +121,31 @@ TEST(MappingMapper, LoopSpacingSpacesAStreamsLoopsAlongItsPath) {
     EXPECT_GE(paths[i] - paths[i - 1], spaced_config.place.loop_spacing - 1e-9) << i;
 }
 
+TEST(MappingMapper, VerificationBudgetBoundsTheCandidatesVerified) {
+  // place_recognition.verification_budget_per_keyframe: the candidates verified by searches of
+  // all keyframes stay within the allowance (budget per keyframe, at most 100 keyframes'
+  // worth saved), the searches past it are counted, and the stream still finds loops.
+  const auto keyframes = drive("a", out_and_back(), 0.05, 1);
+  MapperConfig budget_config = street_config();
+  budget_config.place.verification_budget_per_keyframe = 0.1;
+  Mapper every(street_config()), budgeted(budget_config);
+  for (const auto& kf : keyframes) {
+    every.add_keyframe(kf);
+    budgeted.add_keyframe(kf);
+  }
+  every.optimize();
+  budgeted.optimize();
+  const MapperStats s = budgeted.stats();
+  // One stream, one group: every candidate comes from a search of all keyframes. A search
+  // may verify two candidates, so the allowance can end at -1.
+  const double allowance = 0.1 * static_cast<double>(keyframes.size()) + 1.0;
+  EXPECT_LE(static_cast<double>(s.candidates), allowance);
+  ASSERT_LT(s.candidates, every.stats().candidates);
+  EXPECT_GT(s.searches_over_budget, 0u);
+  EXPECT_EQ(every.stats().searches_over_budget, 0u);
+  EXPECT_GT(budgeted.loops().size(), 0u);
+}
+
 /// Two vehicles on the street: b drives it later, starting at the far end, so its odometry
 /// frame (its own first pose) is 60 m and 180 degrees from a's. Keyframes are given to the
 /// mapper in `arrival` order, all of one vehicle and then all of the other.

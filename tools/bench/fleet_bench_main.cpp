@@ -52,6 +52,10 @@ struct Options {
   double spacing = 2.0;
   double search_spacing = 10.0;
   double loop_spacing = 0.0;
+  int local_hold_loops = mapping::PoseGraphConfig{}.local_hold_loops;
+  double verification_budget = mapping::PlaceRecognitionConfig{}.verification_budget_per_keyframe;
+  double proximity_max_descriptor_distance =
+      mapping::PlaceRecognitionConfig{}.proximity_max_descriptor_distance;
   int segment_keyframes = 10;
   int tile_segment_keyframes = 10;
   int merge_confirmations = 2;
@@ -135,6 +139,14 @@ int main(int argc, char** argv) {
   app.add_option("--spacing", o.spacing, "metres between keyframes");
   app.add_option("--search-spacing", o.search_spacing, "place_recognition.search_spacing, metres");
   app.add_option("--loop-spacing", o.loop_spacing, "place_recognition.loop_spacing, metres");
+  app.add_option("--local-hold-loops", o.local_hold_loops, "pose_graph.local_hold_loops")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--verification-budget", o.verification_budget,
+                 "place_recognition.verification_budget_per_keyframe")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--proximity-max-descriptor-distance", o.proximity_max_descriptor_distance,
+                 "place_recognition.proximity_max_descriptor_distance")
+      ->check(CLI::Range(0.0, 1.0));
   app.add_option("--segment-keyframes", o.segment_keyframes, "pose_graph.segment_keyframes");
   app.add_option("--tile-segment-keyframes", o.tile_segment_keyframes,
                  "map_tiles.segment_keyframes (0: tiles fused keyframe by keyframe)")
@@ -165,6 +177,9 @@ int main(int argc, char** argv) {
   mapping::MapperConfig mapper;
   mapper.place.search_spacing = o.search_spacing;
   mapper.place.loop_spacing = o.loop_spacing;
+  mapper.graph.local_hold_loops = o.local_hold_loops;
+  mapper.place.verification_budget_per_keyframe = o.verification_budget;
+  mapper.place.proximity_max_descriptor_distance = o.proximity_max_descriptor_distance;
   mapper.graph.segment_keyframes = o.segment_keyframes;
   mapper.place.merge_confirmations = o.merge_confirmations;
   mapper.graph.odometry_covariance = mapping::OdometryCovariance::kDistance;
@@ -227,6 +242,7 @@ int main(int argc, char** argv) {
   double background_cpu_s = 0.0;
   CountingSink sink;
   std::size_t tiles = 0, map_pending = 0, diverged = 0;
+  mapping::MapperStats final_stats;
   mapping::TileMapStats tile_stats;
   const auto wall_start = Clock::now();
   {
@@ -241,7 +257,8 @@ int main(int argc, char** argv) {
     std::size_t reported_keyframes = 0;
     double last_poses_cpu = 0.0, last_summary_cpu = 0.0, last_tiles_cpu = 0.0;
     // The local optimisations since the last report: solves, keyframes, loop edges, iterations.
-    std::size_t local_solves = 0, local_keyframes = 0, local_loop_edges = 0, local_iterations = 0;
+    std::size_t local_solves = 0, local_keyframes = 0, local_loop_edges = 0, local_iterations = 0,
+                local_held = 0;
     // On the mapping thread after each turn: its CPU, loop latencies and a report per 10k.
     worker.observe([&](const TurnReport& turn) {
       keyframes += turn.added;
@@ -250,6 +267,7 @@ int main(int argc, char** argv) {
         local_keyframes += static_cast<std::size_t>(turn.optimization.keyframes);
         local_loop_edges += static_cast<std::size_t>(turn.optimization.loop_edges);
         local_iterations += static_cast<std::size_t>(turn.optimization.iterations);
+        local_held += static_cast<std::size_t>(turn.optimization.held_ends);
       }
       batches.emplace_back(keyframes, turn.cpu_s);
       loop_latency_ms.insert(loop_latency_ms.end(), turn.loop_latency_ms.begin(),
@@ -294,11 +312,17 @@ int main(int argc, char** argv) {
       const double solves = static_cast<double>(std::max<std::size_t>(local_solves, 1));
       std::fprintf(stderr,
                    "  local solves %zu: per solve %.0f keyframes, %.0f loop edges, %.1f "
-                   "iterations\n",
+                   "iterations, %.1f older ends held; proximity candidates %zu verified "
+                   "(%zu accepted), %zu skipped by descriptor; %zu searches over budget\n",
                    local_solves, static_cast<double>(local_keyframes) / solves,
                    static_cast<double>(local_loop_edges) / solves,
-                   static_cast<double>(local_iterations) / solves);
-      local_solves = local_keyframes = local_loop_edges = local_iterations = 0;
+                   static_cast<double>(local_iterations) / solves,
+                   static_cast<double>(local_held) / solves,
+                   ms.proximity_candidates - last_ms.proximity_candidates,
+                   ms.proximity_verified - last_ms.proximity_verified,
+                   ms.proximity_skipped - last_ms.proximity_skipped,
+                   ms.searches_over_budget - last_ms.searches_over_budget);
+      local_solves = local_keyframes = local_loop_edges = local_iterations = local_held = 0;
       last_ts = ts;
       last_ms = ms;
       last_in = in;
@@ -326,6 +350,7 @@ int main(int argc, char** argv) {
     loops = core.mapper().loops().size();
     live_poses = core.mapper().poses();
     diverged = core.mapper().stats().diverged;
+    final_stats = core.mapper().stats();
   }
   const double wall_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
   const double rss_run = peak_rss_mb();
@@ -422,6 +447,10 @@ int main(int argc, char** argv) {
   }
   const Json summary = {
       {"vehicles", o.vehicles},
+      {"local_hold_loops", o.local_hold_loops},
+      {"loop_spacing", o.loop_spacing},
+      {"verification_budget_per_keyframe", o.verification_budget},
+      {"proximity_max_descriptor_distance", o.proximity_max_descriptor_distance},
       {"keyframes", keyframes},
       {"distributions_per_keyframe", keyframes ? distributions_total / keyframes : 0},
       {"loops", loops},
@@ -441,6 +470,11 @@ int main(int argc, char** argv) {
       {"group_merges", merges},
       {"wrong_group_merges", wrong_merges},
       {"diverged_solves", diverged},
+      {"candidates_verified", final_stats.candidates},
+      {"proximity_candidates_verified", final_stats.proximity_candidates},
+      {"proximity_candidates_accepted", final_stats.proximity_verified},
+      {"proximity_candidates_skipped", final_stats.proximity_skipped},
+      {"searches_over_budget", final_stats.searches_over_budget},
       {"ate_m", ate},
       {"keyframes_in_map_frame", in_map},
       {"vehicles_in_map_frame", merged.size()},

@@ -6,6 +6,8 @@
 ///   local_max_keyframes back) to the stream's end is free; every other keyframe that an edge
 ///   ties to those is fixed. Its cost is that of the drift the loop corrects, not the map's.
 ///   New loops the region cannot fit within loop_consistency_sigmas are dropped (as before).
+///   With local_hold_loops, an older end already held by that many checked loops near it
+///   stays constant and spreads nothing (the newer end's region takes the correction).
 /// - full pass (in the background): every stream cut into rigid segments of
 ///   segment_keyframes consecutive keyframes, one node each, with the odometry and checked
 ///   loop edges between segments; one fixed segment per group. The problem is a copy
@@ -51,6 +53,8 @@ struct LocalOptimization {
   double final_cost = 0.0;
   /// New loops dropped as inconsistent.
   int dropped = 0;
+  /// New loops' older ends held constant (PoseGraphConfig::local_hold_loops).
+  int held_ends = 0;
 };
 
 /// A full pass, copied out of the graph so that another thread can solve it.
@@ -101,6 +105,9 @@ class GraphOptimizer {
   /// The loop's residual at poses from, to is within loop_consistency_sigmas.
   bool consistent(const LoopEdge& loop, const Eigen::Isometry3d& from,
                   const Eigen::Isometry3d& to) const;
+  /// The keyframe's neighbourhood (itself and local_hops keyframes either side along its
+  /// stream) holds at least local_hold_loops checked loops (never with local_hold_loops 0).
+  bool held_by_loops(std::uint32_t node, const KeyframeGraph& graph, const GraphLoops& loops) const;
 
  private:
   const MapperConfig& config_;

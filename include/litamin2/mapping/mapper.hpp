@@ -44,6 +44,8 @@ struct OptimizeSummary {
   int odometry_edges = 0;
   int loop_edges = 0;
   int iterations = 0;
+  /// Older loop ends held constant by the local optimisation (local_hold_loops).
+  int held_ends = 0;
   double initial_cost = 0.0;
   double final_cost = 0.0;
   double milliseconds = 0.0;

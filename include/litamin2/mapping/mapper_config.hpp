@@ -35,6 +35,12 @@ struct PlaceRecognitionConfig {
   /// (0 = off): drift is small enough that a revisit is found by position, and the estimate
   /// gives the registration a starting pose.
   double proximity_radius = 30.0;
+  /// The proximity candidate is verified only when its place descriptor is within this
+  /// distance of the query's (match_descriptors, 0..1: a comparison of the two descriptors
+  /// before a registration of ~10 ms); 0 = always verified. A keyframe near the pose estimate that
+  /// looks unlike the query (another street through a corner, the view blocked) costs a
+  /// registration and is then rejected.
+  double proximity_max_descriptor_distance = 0.0;
   PlaceSearch search = PlaceSearch::kIndexed;
   /// A stream's keyframes are searched for loops (and their candidates verified) only every
   /// this many metres of its odometry path (0 = every keyframe). A fleet revisiting its
@@ -49,6 +55,13 @@ struct PlaceRecognitionConfig {
   /// vehicles' maps merge; one loop every loop_spacing metres of a revisit is what holds the
   /// odometry's drift. The searches of other groups go on, so that merges are still found.
   double loop_spacing = 0.0;
+  /// Verifications a place search of all keyframes may spend, on average per keyframe added
+  /// (0 = no limit): each keyframe adds this to an allowance (up to what 100 keyframes add),
+  /// each candidate verified by such a search takes one, and while less than one is left the
+  /// searches look only at other groups' keyframes (as within loop_spacing), so merges are
+  /// still found. A fleet on streets it has mapped finds a candidate at nearly every search
+  /// (~10 ms each); this bounds their cost per keyframe whatever the map's coverage.
+  double verification_budget_per_keyframe = 0.0;
   /// A loop between two groups of streams joins them only once this many verified loops
   /// between the same two groups agree on the transform between their frames (1 = the first
   /// loop joins them; merge_confirmation.hpp) ...
@@ -145,6 +158,13 @@ struct PoseGraphConfig {
   /// loop (along each end's own stream), so that the correction spreads on both sides. Not
   /// through other loops: in a fleet's dense graph their hops would reach most of the map.
   int local_hops = 10;
+  /// A new loop's older end whose neighbourhood (local_hops keyframes either side along its
+  /// stream) already holds at least this many checked loops is held constant: it is not freed
+  /// and no keyframes around it are, so the new loop corrects only its newer end's region. At
+  /// a place the fleet has revisited many times that neighbourhood is held by the earlier
+  /// loops, and freeing it brought every one of them (and their other ends) into the problem;
+  /// the full pass spreads the correction further. 0 = every older end is freed (as before).
+  int local_hold_loops = 0;
   /// The full pass (Mapper::optimize_full, in the aggregator on a background thread) moves
   /// runs of this many consecutive keyframes of a stream as one rigid segment (1 = every
   /// keyframe its own node): its cost and memory are those of a graph this many times

@@ -10,6 +10,14 @@ struct MapperStats {
   std::size_t streams = 0;
   std::size_t duplicates = 0;
   std::size_t candidates = 0;
+  /// Proximity candidates verified, and of them accepted; proximity candidates not verified
+  /// because their descriptor was too far (proximity_max_descriptor_distance).
+  std::size_t proximity_candidates = 0;
+  std::size_t proximity_verified = 0;
+  std::size_t proximity_skipped = 0;
+  /// Place searches limited to other groups because the verification allowance was spent
+  /// (verification_budget_per_keyframe).
+  std::size_t searches_over_budget = 0;
   std::size_t verified = 0;
   /// Candidates rejected by verification or, after optimisation, as inconsistent.
   std::size_t rejected = 0;
