@@ -73,6 +73,40 @@ fdds::DataReaderQos odom_reader_qos(std::int32_t depth) {
   return qos;
 }
 
+namespace {
+
+template <typename Qos>
+Qos latest_per_instance(Qos qos, std::int32_t max_instances) {
+  common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::TRANSIENT_LOCAL_DURABILITY_QOS,
+         fdds::KEEP_LAST_HISTORY_QOS, 1);
+  qos.resource_limits().max_instances = max_instances;
+  qos.resource_limits().max_samples_per_instance = 1;
+  qos.resource_limits().max_samples = max_instances;
+  return qos;
+}
+
+}  // namespace
+
+fdds::DataWriterQos latest_per_instance_writer_qos(std::int32_t max_instances) {
+  return latest_per_instance(fdds::DATAWRITER_QOS_DEFAULT, max_instances);
+}
+
+fdds::DataReaderQos latest_per_instance_reader_qos(std::int32_t max_instances) {
+  return latest_per_instance(fdds::DATAREADER_QOS_DEFAULT, max_instances);
+}
+
+namespace {
+constexpr std::int32_t kMaxMapTiles = 100'000;
+}  // namespace
+
+fdds::DataWriterQos map_tiles_writer_qos() {
+  return latest_per_instance_writer_qos(kMaxMapTiles);
+}
+
+fdds::DataReaderQos map_tiles_reader_qos() {
+  return latest_per_instance_reader_qos(kMaxMapTiles);
+}
+
 fdds::DataWriterQos exclusive_odom_writer_qos(std::uint32_t strength, std::int32_t depth) {
   fdds::DataWriterQos qos = odom_writer_qos(depth);
   qos.ownership().kind = fdds::EXCLUSIVE_OWNERSHIP_QOS;

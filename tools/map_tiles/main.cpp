@@ -9,6 +9,7 @@
 
 #include "common/cli.hpp"
 #include "litamin2/dds/participant_factory.hpp"
+#include "litamin2/dds/qos.hpp"
 #include "litamin2/dds/tile_box_filter.hpp"
 #include "litamin2/io/ply.hpp"
 #include "litamin2/msg/MapTilePubSubTypes.h"
@@ -39,21 +40,6 @@ namespace {
 std::atomic<bool> g_stop{false};
 extern "C" void on_signal(int) {
   g_stop = true;
-}
-
-/// Reliable, transient-local, keep-last 1 per tile: the aggregator's writer QoS.
-fdds::DataReaderQos map_tiles_reader_qos() {
-  fdds::DataReaderQos qos = fdds::DATAREADER_QOS_DEFAULT;
-  qos.reliability().kind = fdds::RELIABLE_RELIABILITY_QOS;
-  qos.durability().kind = fdds::TRANSIENT_LOCAL_DURABILITY_QOS;
-  qos.history().kind = fdds::KEEP_LAST_HISTORY_QOS;
-  qos.history().depth = 1;
-  qos.resource_limits().max_instances = 100'000;
-  qos.resource_limits().max_samples_per_instance = 1;
-  qos.resource_limits().max_samples = 100'000;
-  qos.endpoint().history_memory_policy =
-      eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
-  return qos;
 }
 
 nlohmann::ordered_json summary_json(
@@ -188,8 +174,9 @@ int main(int argc, char** argv) {
   litamin2::dds::TileConversionOptions options;
   options.max_distributions = max_distributions;
   map_tiles::TileCollector collector(options);
-  fdds::DataReader* reader = subscriber->create_datareader(
-      filtered, map_tiles_reader_qos(), &collector, fdds::StatusMask::data_available());
+  fdds::DataReader* reader =
+      subscriber->create_datareader(filtered, litamin2::dds::map_tiles_reader_qos(), &collector,
+                                    fdds::StatusMask::data_available());
   if (!reader) return tools::runtime_error(prog, "cannot create the reader of " + topic);
 
   std::signal(SIGINT, on_signal);

@@ -25,6 +25,17 @@ eprosima::fastdds::dds::DataWriterQos points_writer_qos(bool best_effort = false
 eprosima::fastdds::dds::DataWriterQos odom_writer_qos(std::int32_t depth = 100);
 eprosima::fastdds::dds::DataReaderQos odom_reader_qos(std::int32_t depth = 100);
 
+/// The latest sample of each of up to `max_instances` instances, kept for late readers:
+/// reliable, transient-local, keep-last 1 per instance (the aggregator's corrected poses and
+/// map summary per stream, its map tiles per tile). Finite limits: with unlimited ones Fast DDS
+/// 2.9 refuses every write, and its default of 10 instances would refuse the 11th.
+eprosima::fastdds::dds::DataWriterQos latest_per_instance_writer_qos(std::int32_t max_instances);
+eprosima::fastdds::dds::DataReaderQos latest_per_instance_reader_qos(std::int32_t max_instances);
+/// rt/litamin2/map_tiles: the latest sample of each of up to 100,000 tiles (a late reader gets
+/// every tile's latest).
+eprosima::fastdds::dds::DataWriterQos map_tiles_writer_qos();
+eprosima::fastdds::dds::DataReaderQos map_tiles_reader_qos();
+
 /// Hot standby (docs/deploy.md, "Hot standby"): a stream's odometry written by several daemons
 /// with EXCLUSIVE ownership at `strength` (the owner's the highest), so that a reader takes
 /// only the strongest live writer's samples. Fast DDS 2.9 moves a reader to the next writer

@@ -39,19 +39,7 @@ namespace {
 
 /// Corrected poses: the latest per stream instance, kept for late readers.
 fdds::DataWriterQos latest_per_instance_qos() {
-  fdds::DataWriterQos qos = fdds::DATAWRITER_QOS_DEFAULT;
-  qos.reliability().kind = fdds::RELIABLE_RELIABILITY_QOS;
-  qos.durability().kind = fdds::TRANSIENT_LOCAL_DURABILITY_QOS;
-  qos.history().kind = fdds::KEEP_LAST_HISTORY_QOS;
-  qos.history().depth = 1;
-  // One instance per stream: Fast DDS's default limit of 10 instances would refuse the 11th.
-  // Finite limits: with unlimited ones Fast DDS 2.9 refuses every write.
-  qos.resource_limits().max_instances = 10'000;
-  qos.resource_limits().max_samples_per_instance = 1;
-  qos.resource_limits().max_samples = 10'000;
-  qos.endpoint().history_memory_policy =
-      eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
-  return qos;
+  return dds::latest_per_instance_writer_qos(10'000);  // one instance per stream
 }
 
 dds::PatchConversionOptions patch_options(const AggregatorConfig& config) {
@@ -190,7 +178,7 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
     spdlog::warn("cannot register the tile box filter: map tile readers filter themselves");
   tile_type_ = dds::register_type(participant_.get(), new litamin2::msg::MapTilePubSubType());
   fdds::DataWriter* tile_writer = publisher_->create_datawriter(
-      topic(config_.topics.map_tiles, tile_type_), map_tiles_writer_qos());
+      topic(config_.topics.map_tiles, tile_type_), dds::map_tiles_writer_qos());
   if (!tile_writer)
     throw std::runtime_error("cannot create the writer of " + config_.topics.map_tiles);
   // Revisions start at the wall clock's microseconds: above the previous run's.

@@ -5,26 +5,8 @@
 #include "litamin2/dds/time_conversion.hpp"
 
 #include <spdlog/spdlog.h>
-#include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 
 namespace litamin2::aggregator {
-
-namespace fdds = eprosima::fastdds::dds;
-
-fdds::DataWriterQos map_tiles_writer_qos() {
-  fdds::DataWriterQos qos = fdds::DATAWRITER_QOS_DEFAULT;
-  qos.reliability().kind = fdds::RELIABLE_RELIABILITY_QOS;
-  qos.durability().kind = fdds::TRANSIENT_LOCAL_DURABILITY_QOS;
-  qos.history().kind = fdds::KEEP_LAST_HISTORY_QOS;
-  qos.history().depth = 1;
-  // One instance per tile; finite limits (Fast DDS 2.9 refuses every write with unlimited ones).
-  qos.resource_limits().max_instances = 100'000;
-  qos.resource_limits().max_samples_per_instance = 1;
-  qos.resource_limits().max_samples = 100'000;
-  qos.endpoint().history_memory_policy =
-      eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
-  return qos;
-}
 
 MapTilePublisher::MapTilePublisher(Write write, double period_s, std::uint64_t first_revision)
     : write_(std::move(write)),

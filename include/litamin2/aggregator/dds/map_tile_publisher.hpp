@@ -21,15 +21,7 @@
 #include <map>
 #include <mutex>
 
-namespace eprosima::fastdds::dds {
-struct DataWriterQos;
-}  // namespace eprosima::fastdds::dds
-
 namespace litamin2::aggregator {
-
-/// Reliable, transient-local, keep-last 1 per tile (instance), up to 100,000 tiles: a late
-/// reader gets every tile's latest sample.
-eprosima::fastdds::dds::DataWriterQos map_tiles_writer_qos();
 
 struct MapTileCounters {
   /// Samples written, and writes that failed.
