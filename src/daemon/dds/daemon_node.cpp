@@ -27,6 +27,7 @@
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
 
+#include <limits>
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
@@ -339,6 +340,9 @@ void DaemonNode::reshard(Clock::time_point now) {
       spdlog::info("stream {}: moved to member {}", id, owner);
       detach_reader(*s);
       s->moved_to = owner;
+      // A standby's held patches belong to the tracker that stops here: none is published if
+      // the stream comes back (its new tracker starts from the handover seed).
+      if (s->sink->holding()) s->sink->release(std::numeric_limits<std::uint64_t>::max());
     }
   }
 }
