@@ -74,9 +74,4 @@ bool DdsStreamSink::holding() const {
   return holding_;
 }
 
-std::size_t DdsStreamSink::held() const {
-  std::lock_guard lock(hold_mutex_);
-  return held_.size();
-}
-
 }  // namespace litamin2::daemon

@@ -48,7 +48,6 @@ class DdsStreamSink : public ResultSink {
   /// holding. Returns how many were written.
   std::size_t release(std::uint64_t first_id);
   bool holding() const;
-  std::size_t held() const;
 
  private:
   eprosima::fastdds::dds::DataWriter* odom_writer_;
