@@ -6,7 +6,8 @@
 #    shipped config's discovery (on another domain) starts a stream for a new publisher.
 #  - integration_daemon_two_sensors: litamin2-sim --second-sensor -> litamin2-replay of two topics
 #    -> litamin2d with one stream of two `topics:` -> daemon_probe: one odometry message per
-#    sweep, bounded error against the ground truth, merge counters complete.
+#    sweep, bounded error against the ground truth, merge counters complete; the rear sensor
+#    stopping half-way (counted missing); both with motion within the sweep, deskewed.
 #  - integration_daemon_lifecycle: --help/--version/--check-config, config errors, sd_notify
 #    READY/WATCHDOG/STOPPING on a fake NOTIFY_SOCKET, SIGTERM/SIGINT exit 0 within 2 s.
 if(TARGET litamin2d)
