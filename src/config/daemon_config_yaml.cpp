@@ -110,6 +110,28 @@ Eigen::Isometry3d parse_extrinsic(const YAML::Node& node, const std::string& pat
   return pose;
 }
 
+/// A stream's `topics:`: a list of {topic, extrinsic}, at least one; both keys required.
+std::vector<SensorInput> parse_inputs(const YAML::Node& node, const std::string& path) {
+  if (!node.IsSequence() || node.size() == 0)
+    throw ConfigError(path + ": expected a list of {topic, extrinsic}, got '" + yaml_text(node) +
+                      "'");
+  std::vector<SensorInput> inputs;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string item = path + "[" + std::to_string(i) + "]";
+    if (!node[i].IsMap()) throw ConfigError(item + ": expected a mapping {topic, extrinsic}");
+    YamlSection s(node[i], item);
+    SensorInput input;
+    if (!s.read("topic", input.topic)) throw ConfigError(item + ".topic: required");
+    const YAML::Node extrinsic = s.child("extrinsic");
+    if (!extrinsic || extrinsic.IsNull())
+      throw ConfigError(item + ".extrinsic: required (the sensor's pose in the base frame)");
+    input.extrinsic = parse_extrinsic(extrinsic, item + ".extrinsic");
+    s.reject_unknown();
+    inputs.push_back(std::move(input));
+  }
+  return inputs;
+}
+
 }  // namespace
 
 DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
@@ -158,11 +180,26 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
       YamlSection s(streams[i], path);
       StreamConfig stream;
       if (!s.read("id", stream.id)) throw ConfigError(path + ".id: required");
-      if (!s.read("topic", stream.topic)) stream.topic = "rt/" + stream.id + "/points";
+      const bool has_topic = s.read("topic", stream.topic);
+      const YAML::Node topics = s.child("topics");
+      if (topics && !topics.IsNull()) {
+        if (has_topic) throw ConfigError(path + ".topics: give topic or topics, not both");
+        stream.inputs = parse_inputs(topics, path + ".topics");
+        s.read_range("merge_window_s", stream.merge.window_s, 1e-6, 0.5);
+        s.read_range("merge_timeout_s", stream.merge.timeout_s, 1e-6, 10.0);
+      } else {
+        if (!has_topic) stream.topic = "rt/" + stream.id + "/points";
+        if (s.child("merge_window_s") || s.child("merge_timeout_s"))
+          throw ConfigError(path + ": merge_window_s and merge_timeout_s need topics");
+      }
       s.read("sensor_frame", stream.sensor_frame);
       const YAML::Node extrinsic = s.child("extrinsic");
-      if (extrinsic && !extrinsic.IsNull())
+      if (extrinsic && !extrinsic.IsNull()) {
+        if (!stream.inputs.empty())
+          throw ConfigError(
+              path + ".extrinsic: a stream with topics gives each topic's extrinsic instead");
         stream.extrinsic = parse_extrinsic(extrinsic, path + ".extrinsic");
+      }
       const YAML::Node overrides = s.child("tracker");
       if (overrides && !overrides.IsNull() && !overrides.IsMap())
         throw ConfigError(path + ".tracker: expected a mapping of tracker keys");

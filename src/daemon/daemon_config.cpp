@@ -36,9 +36,29 @@ void validate(const DaemonConfig& config) {
       throw ConfigError(path + ".id: '" + stream.id + "' is not a valid stream id: " + *why);
     if (!ids.insert(stream.id).second)
       throw ConfigError(path + ".id: duplicate stream id '" + stream.id + "'");
-    check_topic(stream.topic, path + ".topic");
-    if (!topics.insert(stream.topic).second)
-      throw ConfigError(path + ".topic: '" + stream.topic + "' is used by another stream");
+    if (stream.inputs.empty()) {
+      check_topic(stream.topic, path + ".topic");
+      if (!topics.insert(stream.topic).second)
+        throw ConfigError(path + ".topic: '" + stream.topic + "' is used by another stream");
+    } else {
+      if (!stream.topic.empty())
+        throw ConfigError(path + ".topics: give topic or topics, not both");
+      if (!stream.extrinsic.matrix().isIdentity(0.0))
+        throw ConfigError(path +
+                          ".extrinsic: a stream with topics gives each topic's extrinsic instead");
+      for (std::size_t j = 0; j < stream.inputs.size(); ++j) {
+        const SensorInput& input = stream.inputs[j];
+        const std::string input_path = path + ".topics[" + std::to_string(j) + "]";
+        check_topic(input.topic, input_path + ".topic");
+        if (!topics.insert(input.topic).second)
+          throw ConfigError(input_path + ".topic: '" + input.topic +
+                            "' is used by another stream or input");
+        if (const auto why = extrinsic_error(input.extrinsic))
+          throw ConfigError(input_path + ".extrinsic: " + *why);
+      }
+      if (const auto why = scan_merger_config_error(stream.merge))
+        throw ConfigError(path + "." + *why);
+    }
     if (!stream.sensor_frame.empty()) check_frame(stream.sensor_frame, path + ".sensor_frame");
     try {
       validate(stream.tracker);

@@ -180,6 +180,95 @@ TEST(DaemonConfig, StreamErrors) {
             "streams[0].extrinsic.quat: unknown key");
 }
 
+TEST(DaemonConfig, StreamOfSeveralTopics) {
+  const DaemonConfig c = parse(R"(
+streams:
+  - id: car1
+    topics:
+      - topic: rt/car1/front/points
+        extrinsic: {xyz: [1.5, 0, 1.8]}
+      - topic: rt/car1/rear/points
+        extrinsic: {xyz: [-1.0, 0.2, 1.6], rpy_deg: [0, 0, 180]}
+    merge_window_s: 0.03
+    merge_timeout_s: 0.15
+  - id: car2
+)");
+  ASSERT_EQ(c.streams.size(), 2u);
+  const StreamConfig& car1 = c.streams[0];
+  EXPECT_TRUE(car1.topic.empty());
+  EXPECT_TRUE(car1.extrinsic.matrix().isIdentity(0.0));
+  ASSERT_EQ(car1.inputs.size(), 2u);
+  EXPECT_EQ(car1.inputs[0].topic, "rt/car1/front/points");
+  EXPECT_TRUE(car1.inputs[0].extrinsic.translation().isApprox(Eigen::Vector3d(1.5, 0, 1.8)));
+  EXPECT_EQ(car1.inputs[1].topic, "rt/car1/rear/points");
+  // Sensor -> base: the rear sensor's x axis points backwards in the base.
+  EXPECT_TRUE((car1.inputs[1].extrinsic.linear() * Eigen::Vector3d::UnitX())
+                  .isApprox(-Eigen::Vector3d::UnitX(), 1e-12));
+  EXPECT_EQ(car1.merge.window_s, 0.03);
+  EXPECT_EQ(car1.merge.timeout_s, 0.15);
+  // A single-topic stream is as before: its topic, no inputs, the default merge unused.
+  EXPECT_EQ(c.streams[1].topic, "rt/car2/points");
+  EXPECT_TRUE(c.streams[1].inputs.empty());
+  // Defaults of the merge.
+  const DaemonConfig d =
+      parse("streams: [{id: a, topics: [{topic: rt/a/l/points, extrinsic: {xyz: [0, 0, 1]}}]}]");
+  EXPECT_EQ(d.streams[0].merge.window_s, ScanMergerConfig().window_s);
+  EXPECT_EQ(d.streams[0].merge.timeout_s, ScanMergerConfig().timeout_s);
+}
+
+TEST(DaemonConfig, SeveralTopicsErrors) {
+  const std::string front = "{topic: rt/a/front, extrinsic: {xyz: [1, 0, 0]}}";
+  EXPECT_EQ(error_of("streams: [{id: a, topics: []}]"),
+            "streams[0].topics: expected a list of {topic, extrinsic}, got '[]'");
+  EXPECT_EQ(error_of("streams: [{id: a, topics: rt/a/front}]"),
+            "streams[0].topics: expected a list of {topic, extrinsic}, got 'rt/a/front'");
+  EXPECT_EQ(error_of("streams: [{id: a, topic: rt/a/points, topics: [" + front + "]}]"),
+            "streams[0].topics: give topic or topics, not both");
+  EXPECT_EQ(error_of("streams: [{id: a, topics: [{topic: rt/a/front}]}]"),
+            "streams[0].topics[0].extrinsic: required (the sensor's pose in the base frame)");
+  EXPECT_EQ(error_of("streams: [{id: a, topics: [{extrinsic: {xyz: [1, 0, 0]}}]}]"),
+            "streams[0].topics[0].topic: required");
+  EXPECT_EQ(error_of("streams: [{id: a, topics: [{topic: rt/a/front, extrinsic: {xyz: [1, 0, 0]}, "
+                     "frame: x}]}]"),
+            "streams[0].topics[0].frame: unknown key");
+  EXPECT_EQ(error_of("streams: [{id: a, topics: [" + front + ", " + front + "]}]"),
+            "streams[0].topics[1].topic: 'rt/a/front' is used by another stream or input");
+  EXPECT_EQ(error_of("streams: [{id: b, topic: rt/a/front}, {id: a, topics: [" + front + "]}]"),
+            "streams[1].topics[0].topic: 'rt/a/front' is used by another stream or input");
+  EXPECT_EQ(error_of("streams: [{id: a, topics: [" + front + "]}, {id: b, topic: rt/a/front}]"),
+            "streams[1].topic: 'rt/a/front' is used by another stream");
+  EXPECT_EQ(error_of("streams: [{id: a, topics: [{topic: 'rt/a front', extrinsic: {xyz: [1, 0, "
+                     "0]}}]}]"),
+            "streams[0].topics[0].topic: 'rt/a front' is not a valid topic name");
+  EXPECT_EQ(error_of("streams: [{id: a, topics: [{topic: rt/a/front, extrinsic: "
+                     "[2,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}]}]"),
+            "streams[0].topics[0].extrinsic: the top-left 3x3 block is not a rotation matrix");
+  EXPECT_EQ(error_of("streams: [{id: a, extrinsic: {xyz: [1, 0, 0]}, topics: [" + front + "]}]"),
+            "streams[0].extrinsic: a stream with topics gives each topic's extrinsic instead");
+  EXPECT_EQ(error_of("streams: [{id: a, topics: [" + front + "], merge_window_s: 0.6}]"),
+            "streams[0].merge_window_s: 0.6 is out of range [1e-06, 0.5]");
+  EXPECT_EQ(error_of("streams: [{id: a, topics: [" + front + "], merge_timeout_s: 0}]"),
+            "streams[0].merge_timeout_s: 0 is out of range [1e-06, 10]");
+  EXPECT_EQ(error_of("streams: [{id: a, merge_window_s: 0.05}]"),
+            "streams[0]: merge_window_s and merge_timeout_s need topics");
+  // The same checks on a config built in code.
+  DaemonConfig config;
+  config.discovery.enabled = false;
+  StreamConfig stream;
+  stream.id = "a";
+  stream.inputs.push_back({"rt/a/front", Eigen::Isometry3d::Identity()});
+  config.streams.push_back(stream);
+  EXPECT_NO_THROW(validate(config));
+  config.streams[0].inputs[0].extrinsic.linear() *= 1.5;
+  EXPECT_THROW(validate(config), ConfigError);
+  config.streams[0].inputs[0].extrinsic = Eigen::Isometry3d::Identity();
+  config.streams[0].merge.window_s = 0.0;
+  EXPECT_THROW(validate(config), ConfigError);
+  config.streams[0].merge = ScanMergerConfig();
+  config.streams[0].topic = "rt/a/points";
+  EXPECT_THROW(validate(config), ConfigError);
+}
+
 TEST(DaemonConfig, AMappingAsAKeyIsAConfigErrorEverywhere) {
   // Regression (issue 14): litamin2d --check-config died with SIGABRT on these.
   EXPECT_EQ(error_of("? {voxel_size: 3}\n"), "config: a key must be a name, got '{voxel_size: 3}'");

@@ -83,3 +83,34 @@ TEST(DaemonMetrics, NoStreamsStillTypesEveryFamily) {
   EXPECT_EQ(std::count(s.begin(), s.end(), '\n'), 2) << s;
   EXPECT_TRUE(has_line(text, "litamin2_streams 0"));
 }
+
+TEST(DaemonMetrics, MergeCountersOfAStreamOfSeveralSensors) {
+  StreamStatus merged = stream("car1");
+  ScanMergerCounters m;
+  m.frames = 10;
+  m.incomplete_frames = 3;
+  m.sensors.resize(2);
+  m.sensors[0] = {10, 0, 1, 0};
+  m.sensors[1] = {7, 3, 0, 2};
+  merged.merge = m;
+  const std::string text = daemon_metrics_text({merged, stream("car2")});
+  EXPECT_TRUE(
+      has_line(text, "litamin2_stream_merged_frames_total{stream=\"car1\",complete=\"true\"} 7"))
+      << text;
+  EXPECT_TRUE(
+      has_line(text, "litamin2_stream_merged_frames_total{stream=\"car1\",complete=\"false\"} 3"));
+  EXPECT_TRUE(has_line(
+      text,
+      "litamin2_stream_sensor_scans_total{stream=\"car1\",sensor=\"0\",outcome=\"merged\"} 10"));
+  EXPECT_TRUE(has_line(text,
+                       "litamin2_stream_sensor_scans_total{stream=\"car1\",sensor=\"0\",outcome="
+                       "\"out_of_order\"} 1"));
+  EXPECT_TRUE(has_line(
+      text,
+      "litamin2_stream_sensor_scans_total{stream=\"car1\",sensor=\"1\",outcome=\"missing\"} 3"));
+  EXPECT_TRUE(has_line(
+      text, "litamin2_stream_sensor_scans_total{stream=\"car1\",sensor=\"1\",outcome=\"late\"} 2"));
+  // A single-sensor stream has no merge samples.
+  EXPECT_EQ(text.find("merged_frames_total{stream=\"car2\""), std::string::npos);
+  EXPECT_EQ(text.find("sensor_scans_total{stream=\"car2\""), std::string::npos);
+}

@@ -121,6 +121,38 @@ std::array<double, 3> parse_triple(const std::string& text, const char* option) 
   return {v[0], v[1], v[2]};
 }
 
+/// The second sensor's pose in the first sensor's frame (the vehicle's base frame of a stream
+/// of several sensors) from "x,y,z,roll,pitch,yaw" (metres, degrees; R = Rz(yaw) Ry(pitch)
+/// Rx(roll), as litamin2d.yaml's {xyz, rpy_deg}).
+Eigen::Isometry3d parse_extrinsic(const std::string& text, const char* option) {
+  const auto v = parse_numbers(text, 6, option);
+  constexpr double kDeg = M_PI / 180.0;
+  Eigen::Isometry3d e = Eigen::Isometry3d::Identity();
+  e.linear() = (Eigen::AngleAxisd(v[5] * kDeg, Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(v[4] * kDeg, Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(v[3] * kDeg, Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  e.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+  if (e.translation().norm() > 100.0)
+    throw std::invalid_argument(std::string(option) + ": the sensor is more than 100 m away");
+  return e;
+}
+
+/// DIR/extrinsic.txt: the second sensor's pose in the first sensor's frame, as the 16 numbers
+/// of litamin2d.yaml's `extrinsic:` (4x4, row-major) and as xyz / rpy_deg.
+void write_extrinsic(const std::string& dir, const Eigen::Isometry3d& e, const std::string& text) {
+  const std::string path = (std::filesystem::path(dir) / "extrinsic.txt").string();
+  FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) throw io::IoError(path, "cannot open for writing");
+  std::fprintf(f,
+               "# pose of this sensor in the first sensor's frame (sensor -> base), 4x4 "
+               "row-major; --second-extrinsic %s (x,y,z m, roll,pitch,yaw deg)\n",
+               text.c_str());
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) std::fprintf(f, "%.17g%s", e(r, c), r == 3 && c == 3 ? "\n" : " ");
+  std::fclose(f);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -240,6 +272,19 @@ int main(int argc, char** argv) {
                  "Mean depth a beam travels into foliage before returning, m")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--output,-o", output, "Output folder")->required();
+  // A second LiDAR on the same vehicle (docs/simulator.md, "Two sensors").
+  std::string second_sensor, second_extrinsic, second_output;
+  auto* second = app.add_option("--second-sensor", second_sensor,
+                                "Also simulate a second LiDAR of this model on the same vehicle, "
+                                "its scans in its own frame, into --second-output")
+                     ->check(CLI::IsMember(sim::LidarModel::preset_names()));
+  app.add_option("--second-extrinsic", second_extrinsic,
+                 "The second sensor's pose in the first's frame: X,Y,Z,ROLL,PITCH,YAW (m, deg; "
+                 "default 0,0,0,0,0,0); written to SECOND_OUTPUT/extrinsic.txt")
+      ->needs(second);
+  app.add_option("--second-output", second_output,
+                 "Output folder of the second sensor (same frames, times and drops as the first)")
+      ->needs(second);
   if (const auto status = litamin2::tools::parse_cli(app, argc, argv)) return *status;
 
   try {
@@ -249,6 +294,14 @@ int main(int argc, char** argv) {
                                                       static_cast<std::size_t>(threads));
     }
     if (trajectory_path.empty() && builtin.empty()) builtin = "loop";
+    Eigen::Isometry3d second_in_first = Eigen::Isometry3d::Identity();
+    if (!second_sensor.empty()) {
+      if (second_output.empty())
+        throw std::invalid_argument("--second-sensor needs --second-output");
+      if (fleet > 0) throw std::invalid_argument("--second-sensor: not with --fleet");
+      if (!second_extrinsic.empty())
+        second_in_first = parse_extrinsic(second_extrinsic, "--second-extrinsic");
+    }
 
     // Calibration.
     Eigen::Isometry3d tr = sim::kitti_default_velo_to_cam();
@@ -330,6 +383,9 @@ int main(int argc, char** argv) {
     if (foliage_depth) real.world.foliage_penetration = *foliage_depth;
     model.validate();
     rig.validate();
+    if (!second_sensor.empty() && (rig.mount.roll_deg != 0.0 || rig.mount.pitch_deg != 0.0))
+      throw std::invalid_argument(
+          "--second-sensor: not with a mount tilt (the first sensor's frame is the base)");
     real.traffic.validate();
     real.drops.validate();
     spdlog::info(
@@ -430,6 +486,27 @@ int main(int argc, char** argv) {
       raycast_s += r.raycast_seconds;
       frames_total += r.frames;
       points_total += r.points;
+      if (!second_sensor.empty()) {
+        // The second sensor rides on the first: its poses are the first's times the extrinsic;
+        // same frames, sweep timing and traffic, its own model, noise seed and no self-hits.
+        std::vector<Eigen::Isometry3d> poses;
+        for (const Eigen::Isometry3d& p : vehicles[k].sensor_poses)
+          poses.push_back(p * second_in_first);
+        sim::SequenceWriteOptions wo2 = wo;
+        wo2.model = *sim::LidarModel::from_name(second_sensor);
+        if (noise >= 0) wo2.model.range_noise_sigma = noise;
+        if (dropout >= 0) wo2.model.dropout = dropout;
+        wo2.model.validate();
+        wo2.seed = sim::hash_combine(seed, 5000 + k);
+        wo2.rig.body = sim::EgoBody();
+        wo2.on_scan = nullptr;
+        wo2.progress = nullptr;
+        const auto r2 = sim::write_sequence(second_output, raycaster, poses, wo2);
+        write_extrinsic(second_output, second_in_first,
+                        second_extrinsic.empty() ? "0,0,0,0,0,0" : second_extrinsic);
+        spdlog::info("second sensor {}: {} frames, {:.0f} points/frame into {}", second_sensor,
+                     r2.frames, static_cast<double>(r2.points) / r2.frames, second_output);
+      }
     }
     spdlog::info("done: {} frames, {:.0f} points/frame, ray casting {:.1f} ms/frame ({} threads)",
                  frames_total, static_cast<double>(points_total) / frames_total,

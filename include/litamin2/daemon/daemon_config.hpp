@@ -4,6 +4,7 @@
 /// YAML by config/daemon_config_yaml.hpp).
 
 #include "litamin2/core/tracker_config.hpp"
+#include "litamin2/daemon/scan_merger.hpp"
 #include "litamin2/service/metrics_config.hpp"
 #include "litamin2/service/security_config.hpp"
 #include "litamin2/service/transport_config.hpp"
@@ -15,14 +16,31 @@
 
 namespace litamin2::daemon {
 
-/// One sensor stream: its input topic, the sensor's mounting and its tracker.
+/// One of several sensors merged into a stream (scan_merger.hpp).
+struct SensorInput {
+  /// Input topic of sensor_msgs/PointCloud2.
+  std::string topic;
+  /// The sensor's pose in the vehicle (base) frame: its points are moved into the base by it.
+  Eigen::Isometry3d extrinsic = Eigen::Isometry3d::Identity();
+};
+
+/// One sensor stream: its input topic (or several sensors' topics), the sensor's mounting and
+/// its tracker.
 struct StreamConfig {
   /// Unique id; output topics are named after it (rt/<id>/odom).
   std::string id;
-  /// Input topic of sensor_msgs/PointCloud2 (default rt/<id>/points).
+  /// Input topic of sensor_msgs/PointCloud2 (default rt/<id>/points); empty when `inputs` is
+  /// given.
   std::string topic;
   /// Sensor pose in the vehicle (base) frame; the published odometry is the base's pose.
+  /// Identity when `inputs` is given (the merged scans are in the base frame already).
   Eigen::Isometry3d extrinsic = Eigen::Isometry3d::Identity();
+  /// Several sensors of the vehicle (YAML `topics:`): their scans, each moved to the base
+  /// frame by its extrinsic, merged by stamp into one frame per sweep for the one tracker.
+  /// Empty: the single `topic`.
+  std::vector<SensorInput> inputs;
+  /// How `inputs` are merged (YAML merge_window_s, merge_timeout_s); unused without them.
+  ScanMergerConfig merge;
   /// The global tracker section with this stream's overrides merged over it.
   TrackerConfig tracker;
   /// The sensor's frame, used verbatim (e.g. the frame_id the driver puts in its PointCloud2
@@ -147,7 +165,9 @@ struct DaemonConfig {
 
 /// Throws ConfigError naming the key (as a dotted path) on the first invalid value: stream ids
 /// that are not valid (service::stream_id_error) or duplicate, topics that are not valid topic
-/// names or used twice, a discovery pattern without exactly one '*', an empty odometry frame,
+/// names or used twice (by any stream or input), a stream with both `topic` and `inputs`, or
+/// with `inputs` and an extrinsic of its own, an input's extrinsic that is not rigid, an invalid
+/// merge config, a discovery pattern without exactly one '*', an empty odometry frame,
 /// an unknown log level, neither streams nor discovery, and invalid tracker sections; frame
 /// names that are empty, start with '/' or hold whitespace (tf2 refuses them), equal odom and
 /// base frames, and frame_prefix false with more than one stream or with discovery; an invalid

@@ -69,6 +69,29 @@ std::string daemon_metrics_text(const std::vector<StreamStatus>& streams) {
   out.family("litamin2_stream_latency_seconds", Type::kHistogram,
              "scan arrival to odometry published");
   for (const StreamStatus& s : streams) out.histogram({{"stream", s.id}}, s.stats.latency_seconds);
+  // Streams of several sensors only.
+  out.family("litamin2_stream_merged_frames_total", Type::kCounter,
+             "frames merged from several sensors' scans, by completeness");
+  for (const StreamStatus& s : streams)
+    if (s.merge) {
+      out.sample({{"stream", s.id}, {"complete", "true"}},
+                 num(s.merge->frames - s.merge->incomplete_frames));
+      out.sample({{"stream", s.id}, {"complete", "false"}}, num(s.merge->incomplete_frames));
+    }
+  out.family("litamin2_stream_sensor_scans_total", Type::kCounter,
+             "scans of a stream's sensor (index in its topics), by outcome: merged, missing "
+             "(a merged frame without it), out_of_order, late (rejected)");
+  for (const StreamStatus& s : streams)
+    if (s.merge)
+      for (std::size_t i = 0; i < s.merge->sensors.size(); ++i) {
+        const SensorMergeCounters& c = s.merge->sensors[i];
+        const std::string sensor = std::to_string(i);
+        out.sample({{"stream", s.id}, {"sensor", sensor}, {"outcome", "merged"}}, num(c.scans));
+        out.sample({{"stream", s.id}, {"sensor", sensor}, {"outcome", "missing"}}, num(c.missing));
+        out.sample({{"stream", s.id}, {"sensor", sensor}, {"outcome", "out_of_order"}},
+                   num(c.out_of_order));
+        out.sample({{"stream", s.id}, {"sensor", sensor}, {"outcome", "late"}}, num(c.late));
+      }
   per_stream(out, streams, "litamin2_stream_queue_depth", Type::kGauge,
              "scans waiting to be processed",
              [](const StreamStatus& s) { return static_cast<double>(s.counters.queued); });

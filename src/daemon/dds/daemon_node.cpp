@@ -5,6 +5,7 @@
 #include "litamin2/daemon/dds/dds_stream_sink.hpp"
 #include "litamin2/daemon/dds/points_listener.hpp"
 #include "litamin2/daemon/dds/status_message.hpp"
+#include "litamin2/daemon/merged_input.hpp"
 #include "litamin2/daemon/stream_frames.hpp"
 #include "litamin2/daemon/stream_processor.hpp"
 #include "litamin2/dds/checked_type.hpp"
@@ -36,10 +37,18 @@ namespace litamin2::daemon {
 
 namespace fdds = eprosima::fastdds::dds;
 
+/// One input topic of a stream: the stream's only one, or one sensor of several.
+struct DaemonNode::Input {
+  std::string topic;
+  fdds::Topic* points_topic = nullptr;
+  std::unique_ptr<PointsListener> listener;
+  fdds::DataReader* reader = nullptr;
+  bool reliable = false;
+};
+
 struct DaemonNode::Stream {
   StreamConfig config;
   StreamStats stats;
-  fdds::Topic* points_topic = nullptr;
   fdds::DataWriter* odom_writer = nullptr;
   /// The stream's map patches: a publisher whose partition is the stream id, and its writer.
   fdds::Publisher* patch_publisher = nullptr;
@@ -54,10 +63,12 @@ struct DaemonNode::Stream {
   /// Hot standby: this daemon's rank for the stream when set_role last ran (0: owner).
   std::optional<std::size_t> rank;
   StreamScheduler::Handle handle = 0;
-  std::unique_ptr<PointsListener> listener;
-  fdds::DataReader* reader = nullptr;
-  bool reliable = false;
+  /// One per input topic (config.topic, or each of config.inputs).
+  std::vector<Input> inputs;
+  /// Several sensors: their scans merged into the frames queued on `handle`.
+  std::unique_ptr<MergedInput> merged;
   std::uint64_t reported_dropped = 0;
+  std::uint64_t reported_missing = 0;
   std::uint64_t reported_bad = 0;
   std::uint64_t reported_out_of_order = 0;
 };
@@ -173,10 +184,20 @@ DaemonNode::Stream& DaemonNode::add_stream(StreamConfig config, std::optional<Ha
   stream->config = std::move(config);
   Stream& s = *stream;
   const std::string odom_topic_name = "rt/" + s.config.id + "/" + config_.outputs.odom_suffix;
-  s.points_topic = topic(s.config.topic, points_type_.get_type_name());
+  if (s.config.inputs.empty()) {
+    s.inputs.resize(1);
+    s.inputs[0].topic = s.config.topic;
+  } else {
+    s.inputs.resize(s.config.inputs.size());
+    for (std::size_t i = 0; i < s.inputs.size(); ++i) s.inputs[i].topic = s.config.inputs[i].topic;
+  }
+  for (Input& input : s.inputs) {
+    input.points_topic = topic(input.topic, points_type_.get_type_name());
+    if (!input.points_topic)
+      throw std::runtime_error("stream " + s.config.id + ": cannot create topic " + input.topic);
+  }
   auto* odom_topic = topic(odom_topic_name, odom_type_.get_type_name());
-  if (!s.points_topic || !odom_topic)
-    throw std::runtime_error("stream " + s.config.id + ": cannot create its topics");
+  if (!odom_topic) throw std::runtime_error("stream " + s.config.id + ": cannot create its topics");
   // Hot standby: every tracking daemon writes the odometry, readers take the strongest's;
   // set_role gives the strength.
   s.odom_writer = publisher_->create_datawriter(odom_topic, config_.sharding.replicas > 1
@@ -203,8 +224,16 @@ DaemonNode::Stream& DaemonNode::add_stream(StreamConfig config, std::optional<Ha
   if (tf_static_writer_) {
     // One transient-local message holds every stream's base -> sensor (keep-last 1, as ROS 2's
     // static broadcaster): a new stream republishes the whole set.
-    static_transforms_.transforms().push_back(dds::to_transform_stamped(
-        s.config.extrinsic, dds::wall_clock_now(), frames.base, frames.sensor));
+    if (s.config.inputs.empty()) {
+      static_transforms_.transforms().push_back(dds::to_transform_stamped(
+          s.config.extrinsic, dds::wall_clock_now(), frames.base, frames.sensor));
+    } else {
+      // Several sensors: base -> "<sensor>_<i>" for each, by its extrinsic.
+      for (std::size_t i = 0; i < s.config.inputs.size(); ++i)
+        static_transforms_.transforms().push_back(
+            dds::to_transform_stamped(s.config.inputs[i].extrinsic, dds::wall_clock_now(),
+                                      frames.base, frames.sensor + "_" + std::to_string(i)));
+    }
     if (!tf_static_writer_->write(&static_transforms_))
       spdlog::warn("stream {}: writing {} failed", s.config.id, config_.outputs.tf_static_topic);
   }
@@ -221,9 +250,22 @@ DaemonNode::Stream& DaemonNode::add_stream(StreamConfig config, std::optional<Ha
   conversion.read_intensity = false;
   conversion.read_time = s.config.tracker.deskew.enabled;
   conversion.max_points = static_cast<std::size_t>(config_.limits.max_points_per_scan);
-  s.listener =
-      std::make_unique<PointsListener>(s.config.id, *scheduler_, s.handle, s.stats, conversion);
-  spdlog::info("stream {}: {} -> {}{}", s.config.id, s.config.topic, odom_topic_name,
+  if (s.config.inputs.empty()) {
+    s.inputs[0].listener =
+        std::make_unique<PointsListener>(s.config.id, *scheduler_, s.handle, s.stats, conversion);
+  } else {
+    std::vector<Eigen::Isometry3d> extrinsics;
+    for (const SensorInput& input : s.config.inputs) extrinsics.push_back(input.extrinsic);
+    s.merged =
+        std::make_unique<MergedInput>(std::move(extrinsics), s.config.merge, *scheduler_, s.handle);
+    MergedInput* merged = s.merged.get();
+    for (std::size_t i = 0; i < s.inputs.size(); ++i)
+      s.inputs[i].listener = std::make_unique<PointsListener>(
+          s.config.id + " input " + s.inputs[i].topic,
+          [merged, i](Frame frame) { merged->add(i, std::move(frame)); },
+          [merged] { merged->restart(); }, s.stats, conversion);
+  }
+  spdlog::info("stream {}: {} -> {}{}", s.config.id, input_topics(s), odom_topic_name,
                tf_writer_
                    ? fmt::format(", tf {} -> {} -> {}", frames.odom, frames.base, frames.sensor)
                    : std::string());
@@ -286,10 +328,10 @@ void DaemonNode::on_sharded_writer(const DiscoveredWriter& writer) {
     return;
   } else if (!writer.reliable && it->second.reliable) {
     it->second.reliable = false;
-    if (Stream* s = find_by_id(*id); s && s->reader && s->reliable) {
+    if (Stream* s = find_by_id(*id); s && s->inputs[0].reader && s->inputs[0].reliable) {
       spdlog::warn("stream {}: a best-effort publisher appeared; reading best-effort", *id);
       detach_reader(*s);
-      attach_reader(*s, false);
+      attach_reader(*s, s->inputs[0], false);
     }
   }
 }
@@ -305,7 +347,7 @@ void DaemonNode::reshard(Clock::time_point now) {
     const std::size_t rank = membership_->rank(id);
     Stream* s = find_by_id(id);
     if (rank < replicas) {
-      if (s && s->reader) {
+      if (s && reading(*s)) {
         set_role(*s, rank);
         continue;
       }
@@ -334,8 +376,8 @@ void DaemonNode::reshard(Clock::time_point now) {
       s->moved_to.clear();
       s->rank.reset();
       set_role(*s, rank);
-      attach_reader(*s, known.reliable);
-    } else if (s && s->reader) {
+      attach_reader(*s, s->inputs[0], known.reliable);
+    } else if (s && reading(*s)) {
       const std::string owner = membership_->owner(id);
       spdlog::info("stream {}: moved to member {}", id, owner);
       detach_reader(*s);
@@ -384,31 +426,49 @@ std::vector<std::string> DaemonNode::members() const {
   return membership_ ? membership_->live() : std::vector<std::string>{};
 }
 
-DaemonNode::Stream* DaemonNode::find_by_topic(const std::string& topic) {
+std::pair<DaemonNode::Stream*, DaemonNode::Input*> DaemonNode::find_by_topic(
+    const std::string& topic) {
   for (auto& s : streams_)
-    if (s->config.topic == topic) return s.get();
-  return nullptr;
+    for (Input& input : s->inputs)
+      if (input.topic == topic) return {s.get(), &input};
+  return {nullptr, nullptr};
 }
 
-void DaemonNode::attach_reader(Stream& s, bool reliable) {
-  s.reader = subscriber_->create_datareader(
-      s.points_topic, dds::points_reader_qos(reliable), s.listener.get(),
+bool DaemonNode::reading(const Stream& s) {
+  for (const Input& input : s.inputs)
+    if (input.reader) return true;
+  return false;
+}
+
+std::string DaemonNode::input_topics(const Stream& s) {
+  std::string topics;
+  for (const Input& input : s.inputs) topics += (topics.empty() ? "" : ",") + input.topic;
+  return topics;
+}
+
+void DaemonNode::attach_reader(Stream& s, Input& input, bool reliable) {
+  input.reader = subscriber_->create_datareader(
+      input.points_topic, dds::points_reader_qos(reliable), input.listener.get(),
       fdds::StatusMask::data_available()
           << fdds::StatusMask::subscription_matched() << fdds::StatusMask::sample_lost());
-  if (!s.reader) {
-    spdlog::error("stream {}: cannot create a reader of {}", s.config.id, s.config.topic);
+  if (!input.reader) {
+    spdlog::error("stream {}: cannot create a reader of {}", s.config.id, input.topic);
     return;
   }
-  s.reliable = reliable;
-  spdlog::info("stream {}: reading {} ({})", s.config.id, s.config.topic,
+  input.reliable = reliable;
+  spdlog::info("stream {}: reading {} ({})", s.config.id, input.topic,
                reliable ? "reliable" : "best effort");
 }
 
+void DaemonNode::detach_reader(Input& input) {
+  if (!input.reader) return;
+  input.reader->set_listener(nullptr);
+  subscriber_->delete_datareader(input.reader);
+  input.reader = nullptr;
+}
+
 void DaemonNode::detach_reader(Stream& s) {
-  if (!s.reader) return;
-  s.reader->set_listener(nullptr);
-  subscriber_->delete_datareader(s.reader);
-  s.reader = nullptr;
+  for (Input& input : s.inputs) detach_reader(input);
 }
 
 void DaemonNode::on_writer(const DiscoveredWriter& writer) {
@@ -416,7 +476,7 @@ void DaemonNode::on_writer(const DiscoveredWriter& writer) {
     on_sharded_writer(writer);
     return;
   }
-  Stream* s = find_by_topic(writer.topic);
+  auto [s, input] = find_by_topic(writer.topic);
   if (!s) {
     if (!pattern_) return;
     const std::optional<std::string> id = pattern_->match(writer.topic);
@@ -432,18 +492,20 @@ void DaemonNode::on_writer(const DiscoveredWriter& writer) {
     for (const auto& other : streams_)
       if (other->config.id == *id) {
         spdlog::warn("ignoring {}: stream id {} is taken by {}", writer.topic, *id,
-                     other->config.topic);
+                     input_topics(*other));
         return;
       }
     s = &add_stream(discovered_stream(config_, *id, writer.topic));
+    input = &s->inputs[0];
   }
-  if (!s->reader) {
-    attach_reader(*s, writer.reliable);
-  } else if (s->reliable && !writer.reliable) {
+  if (!input->reader) {
+    attach_reader(*s, *input, writer.reliable);
+  } else if (input->reliable && !writer.reliable) {
     // A reliable reader does not match a best-effort writer: read everything best-effort.
-    spdlog::warn("stream {}: a best-effort publisher appeared; reading best-effort", s->config.id);
-    detach_reader(*s);
-    attach_reader(*s, false);
+    spdlog::warn("stream {}: a best-effort publisher of {} appeared; reading it best-effort",
+                 s->config.id, input->topic);
+    detach_reader(*input);
+    attach_reader(*s, *input, false);
   }
 }
 
@@ -477,6 +539,8 @@ void DaemonNode::poll(Clock::time_point now) {
       spdlog::error("sharding: cannot start a stream: {}", e.what());
     }
   }
+  for (auto& s : streams_)
+    if (s->merged) s->merged->expire(now);
   if (now >= next_status_) {
     publish_status(now);
     next_status_ = now + std::chrono::duration_cast<Clock::duration>(
@@ -495,14 +559,19 @@ std::vector<StreamStatus> DaemonNode::status(Clock::time_point now) const {
   for (const auto& s : streams_) {
     StreamStatus st;
     st.id = s->config.id;
-    st.topic = s->config.topic;
+    st.topic = input_topics(*s);
     st.stats = s->stats.snapshot(now);
     st.counters = scheduler_->counters(s->handle);
     st.stats.frames_dropped = st.counters.dropped;  // the queue counts drops
     st.stats.frames_failed = st.counters.failed;
-    st.reading = s->reader != nullptr;
-    st.reliable = s->reliable;
-    st.samples_lost = s->listener->samples_lost();
+    st.reading = reading(*s);
+    // Reliable when every input read is.
+    st.reliable = st.reading;
+    for (const Input& input : s->inputs) {
+      if (input.reader && !input.reliable) st.reliable = false;
+      st.samples_lost += input.listener->samples_lost();
+    }
+    if (s->merged) st.merge = s->merged->counters();
     st.moved_to = s->moved_to;
     statuses.push_back(std::move(st));
   }
@@ -527,7 +596,11 @@ void DaemonNode::publish_status(Clock::time_point now) {
     } else if (st.stats.frames_out_of_order > s.reported_out_of_order) {
       st.level = 1;
       st.message = "frames out of order dropped";
+    } else if (st.merge && st.merge->missing() > s.reported_missing) {
+      st.level = 1;
+      st.message = "sensor scans missing from merged frames";
     }
+    if (st.merge) s.reported_missing = st.merge->missing();
     s.reported_dropped = st.counters.dropped;
     s.reported_bad = st.stats.bad_messages;
     s.reported_out_of_order = st.stats.frames_out_of_order;
@@ -557,7 +630,11 @@ std::string DaemonNode::summary(Clock::time_point now) const {
 DrainResult DaemonNode::shutdown() {
   if (stopped_) return {true, 0, 0};
   stopped_ = true;
-  for (auto& s : streams_) detach_reader(*s);
+  for (auto& s : streams_) {
+    detach_reader(*s);
+    // A merged frame still waiting for a sensor is queued with what arrived.
+    if (s->merged) s->merged->flush();
+  }
   const DrainResult result = scheduler_->drain(
       std::chrono::milliseconds(static_cast<std::int64_t>(config_.shutdown_timeout_s * 1000.0)));
   publish_status(Clock::now());

@@ -15,9 +15,16 @@ namespace fdds = eprosima::fastdds::dds;
 PointsListener::PointsListener(std::string stream, StreamScheduler& scheduler,
                                StreamScheduler::Handle handle, StreamStats& stats,
                                dds::CloudConversionOptions options)
-    : stream_(std::move(stream)),
-      scheduler_(scheduler),
-      handle_(handle),
+    : PointsListener(
+          std::move(stream),
+          [&scheduler, handle](Frame frame) { scheduler.submit(handle, std::move(frame)); }, {},
+          stats, options) {}
+
+PointsListener::PointsListener(std::string name, Deliver deliver, NewPublisher new_publisher,
+                               StreamStats& stats, dds::CloudConversionOptions options)
+    : stream_(std::move(name)),
+      deliver_(std::move(deliver)),
+      new_publisher_(std::move(new_publisher)),
       stats_(stats),
       options_(options) {}
 
@@ -90,7 +97,7 @@ void PointsListener::on_data_available(fdds::DataReader* reader) {
     frame.arrival = arrival;
     frame.sequence = sequence_.fetch_add(1);
     stats_.record_received();
-    scheduler_.submit(handle_, std::move(frame));
+    deliver_(std::move(frame));
   }
 }
 
@@ -99,8 +106,11 @@ void PointsListener::on_subscription_matched(fdds::DataReader*,
   spdlog::info("stream {}: {} publisher(s) matched", stream_, info.current_count);
   if (info.current_count_change > 0) {
     // A new publisher (or a restarted one) may start its stamps anew.
-    std::lock_guard lock(stamp_mutex_);
-    last_stamp_.reset();
+    {
+      std::lock_guard lock(stamp_mutex_);
+      last_stamp_.reset();
+    }
+    if (new_publisher_) new_publisher_();
   }
 }
 

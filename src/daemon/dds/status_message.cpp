@@ -44,6 +44,21 @@ diagnostic_msgs::msg::DiagnosticArray make_status_message(const std::vector<Stre
     v.push_back(key_value("samples_lost", std::to_string(s.samples_lost)));
     v.push_back(key_value("keyframes", std::to_string(s.stats.keyframes)));
     v.push_back(key_value("map_size", std::to_string(s.stats.map_size)));
+    if (s.merge) {
+      // Several sensors: merged frames, and per sensor (in the listed order of `topic`) its
+      // scans merged, merged frames without it, and its scans rejected.
+      const ScanMergerCounters& m = *s.merge;
+      v.push_back(key_value("merged_frames", std::to_string(m.frames)));
+      v.push_back(key_value("merged_frames_incomplete", std::to_string(m.incomplete_frames)));
+      for (std::size_t i = 0; i < m.sensors.size(); ++i) {
+        const std::string prefix = "sensor." + std::to_string(i) + ".";
+        const SensorMergeCounters& c = m.sensors[i];
+        v.push_back(key_value(prefix + "scans", std::to_string(c.scans)));
+        v.push_back(key_value(prefix + "missing", std::to_string(c.missing)));
+        v.push_back(key_value(prefix + "out_of_order", std::to_string(c.out_of_order)));
+        v.push_back(key_value(prefix + "late", std::to_string(c.late)));
+      }
+    }
     array.status().push_back(std::move(status));
   }
   return array;

@@ -108,6 +108,9 @@ int main(int argc, char** argv) {
   app.add_option("--timeout", timeout_s);
   app.add_option("--ready-file", ready_file, "created once every odom reader is matched");
   app.add_option("--poses-out", poses_out, "prefix of files with the received poses (KITTI)");
+  std::string status_out;
+  app.add_option("--status-out", status_out,
+                 "prefix of files with each stream's last status, one 'key value' a line");
   app.add_option("--arrivals-out", arrivals_out,
                  "prefix of files with one line per message: reception time (s since the epoch), "
                  "header stamp (s), x, y, z");
@@ -244,6 +247,15 @@ int main(int argc, char** argv) {
           v["bad_messages"].c_str(), v["latency_p50_ms"].c_str(), v["latency_p99_ms"].c_str(),
           v["map_size"].c_str(), v["tracking_cpu_s"].c_str(), v["keyframes"].c_str());
       if (v["frames_processed"] != std::to_string(expect) || v["frames_dropped"] != "0") ok = false;
+      if (!status_out.empty()) {
+        std::FILE* f = std::fopen((status_out + p.id + ".txt").c_str(), "w");
+        if (!f) {
+          ok = false;
+          continue;
+        }
+        for (const auto& [key, value] : v) std::fprintf(f, "%s %s\n", key.c_str(), value.c_str());
+        std::fclose(f);
+      }
     }
   }
   std::printf("%s\n", ok ? "PASS" : "FAIL");

@@ -1,6 +1,7 @@
 #pragma once
 /// The daemon's DDS side: one participant; per stream a reader of rt/<stream>/points (created
-/// when discovery reports a writer, reliable if the writer is), a tracker on the shared
+/// when discovery reports a writer, reliable if the writer is; a stream of several sensors has
+/// one reader per topic, their scans merged by MergedInput), a tracker on the shared
 /// StreamScheduler, a writer of rt/<stream>/odom and a writer of the map patches in the
 /// partition of the stream id (dds/stream_partition.hpp); one writer each for status (also on
 /// rt/diagnostics unless outputs.diagnostics_topic is empty), rt/tf (every stream's odom -> base
@@ -78,6 +79,7 @@ class DaemonNode {
   std::string metrics_text(Clock::time_point now = Clock::now()) const;
 
  private:
+  struct Input;
   struct Stream;
 
   Stream& add_stream(StreamConfig config, std::optional<HandoverSeed> seed = std::nullopt);
@@ -93,9 +95,16 @@ class DaemonNode {
   /// owner did not publish.
   void set_role(Stream& stream, std::size_t rank);
   std::optional<HandoverSeed> handover_seed(const std::string& id) const;
-  Stream* find_by_topic(const std::string& topic);
+  /// The stream reading `topic` (its only topic or one of its sensors'), and that input.
+  std::pair<Stream*, Input*> find_by_topic(const std::string& topic);
+  /// Some input of the stream has a reader.
+  static bool reading(const Stream& stream);
+  /// The stream's input topics, comma-separated.
+  static std::string input_topics(const Stream& stream);
   void on_writer(const DiscoveredWriter& writer);
-  void attach_reader(Stream& stream, bool reliable);
+  void attach_reader(Stream& stream, Input& input, bool reliable);
+  void detach_reader(Input& input);
+  /// Every input's reader.
   void detach_reader(Stream& stream);
   void publish_status(Clock::time_point now);
 

@@ -1,7 +1,8 @@
 #pragma once
-/// The reader listener of one stream's rt/<stream>/points: takes each PointCloud2 sample,
-/// validates and converts it (litamin2::dds::from_pointcloud2), and queues it on the stream's
-/// scheduler; a bad message is counted and logged (rate-limited), never processed. It never
+/// The reader listener of one stream's rt/<stream>/points (or of one sensor's topic of a stream
+/// of several, MergedInput): takes each PointCloud2 sample, validates and converts it
+/// (litamin2::dds::from_pointcloud2), and hands it on (the stream's scheduler queue, or the
+/// merge); a bad message is counted and logged (rate-limited), never processed. It never
 /// blocks on processing: the scheduler's queue drops the oldest frame when the stream is behind.
 ///
 /// Besides the message checks of the conversion:
@@ -21,6 +22,7 @@
 
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -29,9 +31,18 @@ namespace litamin2::daemon {
 
 class PointsListener : public eprosima::fastdds::dds::DataReaderListener {
  public:
-  /// `scheduler` and `stats` must outlive the listener.
+  /// Takes each accepted scan (called on the DDS listener thread).
+  using Deliver = std::function<void(Frame)>;
+  /// Called when a new publisher matched (its stamps may start over).
+  using NewPublisher = std::function<void()>;
+
+  /// Queues the scans on `scheduler`; `scheduler` and `stats` must outlive the listener.
   PointsListener(std::string stream, StreamScheduler& scheduler, StreamScheduler::Handle handle,
                  StreamStats& stats, dds::CloudConversionOptions options = {});
+  /// Hands the scans to `deliver`; `stats` must outlive the listener. `name` names the input in
+  /// logs (the stream id, or "<stream> input <topic>").
+  PointsListener(std::string name, Deliver deliver, NewPublisher new_publisher, StreamStats& stats,
+                 dds::CloudConversionOptions options);
 
   void on_data_available(eprosima::fastdds::dds::DataReader* reader) override;
   void on_subscription_matched(
@@ -45,8 +56,8 @@ class PointsListener : public eprosima::fastdds::dds::DataReaderListener {
 
  private:
   const std::string stream_;
-  StreamScheduler& scheduler_;
-  const StreamScheduler::Handle handle_;
+  const Deliver deliver_;
+  const NewPublisher new_publisher_;
   StreamStats& stats_;
   const dds::CloudConversionOptions options_;
   service::LogRateLimiter bad_message_log_;

@@ -4,9 +4,11 @@
 /// counters as key/value pairs, published on rt/litamin2/status.
 
 #include "diagnostic_msgs/msg/DiagnosticArray.h"
+#include "litamin2/daemon/scan_merger.hpp"
 #include "litamin2/daemon/stream_scheduler.hpp"
 #include "litamin2/daemon/stream_stats.hpp"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +24,8 @@ struct StreamStatus {
   bool reading = false;
   bool reliable = false;
   std::uint64_t samples_lost = 0;
+  /// A stream of several sensors: the merge's counters (scan_merger.hpp).
+  std::optional<ScanMergerCounters> merge;
   /// Sharding: the member tracking the stream when it is not this daemon (the stream moved
   /// away); empty otherwise.
   std::string moved_to;
