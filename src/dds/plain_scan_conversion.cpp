@@ -12,10 +12,11 @@ namespace litamin2::dds {
 
 namespace {
 
-static_assert(std::tuple_size<std::remove_reference_t<
-                      decltype(std::declval<litamin2::msg::PlainScan&>().points())>>::value ==
-                  kPlainScanCapacity,
-              "kPlainScanCapacity is the IDL's array size");
+static_assert(
+    std::tuple_size<std::remove_reference_t<
+            decltype(std::declval<litamin2_zero_copy::msg::PlainScan&>().points())>>::value ==
+        kPlainScanCapacity,
+    "kPlainScanCapacity is the IDL's array size");
 
 CloudError fail(CloudConversion& out, CloudError error, std::string message) {
   out.error = error;
@@ -28,7 +29,7 @@ CloudError fail(CloudConversion& out, CloudError error, std::string message) {
 
 }  // namespace
 
-CloudError from_plain_scan(const litamin2::msg::PlainScan& scan,
+CloudError from_plain_scan(const litamin2_zero_copy::msg::PlainScan& scan,
                            const CloudConversionOptions& options, CloudConversion& out) {
   out.error = CloudError::kNone;
   out.message.clear();
@@ -66,7 +67,7 @@ CloudError from_plain_scan(const litamin2::msg::PlainScan& scan,
   std::size_t kept = 0;
   const auto& in = scan.points();
   for (std::uint32_t i = 0; i < count; ++i) {
-    const litamin2::msg::PlainPoint& p = in[i];
+    const litamin2_zero_copy::msg::PlainPoint& p = in[i];
     const float x = p.x(), y = p.y(), z = p.z();
     // x - x is 0 for finite x and NaN for NaN or +-Inf: one test for all three.
     if (!((x - x) + (y - y) + (z - z) == 0.0f)) {
@@ -89,7 +90,7 @@ CloudError from_plain_scan(const litamin2::msg::PlainScan& scan,
 }
 
 void to_plain_scan(const PointCloud& cloud, Stamp stamp, const std::string& frame_id,
-                   litamin2::msg::PlainScan& scan) {
+                   litamin2_zero_copy::msg::PlainScan& scan) {
   if (cloud.size() > kPlainScanCapacity)
     throw std::invalid_argument("to_plain_scan: " + std::to_string(cloud.size()) +
                                 " points > capacity " + std::to_string(kPlainScanCapacity));

@@ -424,7 +424,7 @@ void text_seeds(const fs::path& config_dir) {
 /// PlainScan: the sample's memory, truncated after its points (the harness zero-fills the rest).
 void plain_scan_seeds() {
   const std::string h = "plain_scan";
-  auto scan = std::make_unique<litamin2::msg::PlainScan>();
+  auto scan = std::make_unique<litamin2_zero_copy::msg::PlainScan>();
   PointCloud cloud;
   for (int i = 0; i < 6; ++i) {
     cloud.points.emplace_back(1.0f + i, -2.0f * i, 0.5f);

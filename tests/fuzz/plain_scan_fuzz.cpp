@@ -1,4 +1,4 @@
-// Fuzz harness: a litamin2/PlainScan as litamin2d's zero-copy input receives it
+// Fuzz harness: a litamin2_zero_copy/PlainScan as litamin2d's zero-copy input receives it
 // (streams[].zero_copy_topic). With data-sharing, the reader sees the writer's shared memory laid
 // over the struct: the input's bytes are that memory (a prefix of the 2,097,232-byte sample;
 // the rest is zero), converted by dds::from_plain_scan. Without data-sharing (the writer not on
@@ -15,13 +15,13 @@
 #include "fuzz_support.hpp"
 #include "litamin2/dds/checked_type.hpp"
 #include "litamin2/dds/plain_scan_conversion.hpp"
-#include "litamin2/msg/PlainScanPubSubTypes.h"
+#include "litamin2_zero_copy/msg/PlainScanPubSubTypes.h"
 
 using namespace litamin2;
 
 namespace {
 
-void check_conversion(const litamin2::msg::PlainScan& scan, bool read_time) {
+void check_conversion(const litamin2_zero_copy::msg::PlainScan& scan, bool read_time) {
   dds::CloudConversionOptions options;
   options.read_time = read_time;
   options.max_points = 100'000;
@@ -50,15 +50,15 @@ void check_conversion(const litamin2::msg::PlainScan& scan, bool read_time) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const auto scan = std::make_unique<litamin2::msg::PlainScan>();
+  static const auto scan = std::make_unique<litamin2_zero_copy::msg::PlainScan>();
   // The shared-memory path: the bytes laid over the sample.
-  std::memset(static_cast<void*>(scan.get()), 0, sizeof(litamin2::msg::PlainScan));
+  std::memset(static_cast<void*>(scan.get()), 0, sizeof(litamin2_zero_copy::msg::PlainScan));
   std::memcpy(static_cast<void*>(scan.get()), data,
-              std::min(size, sizeof(litamin2::msg::PlainScan)));
+              std::min(size, sizeof(litamin2_zero_copy::msg::PlainScan)));
   check_conversion(*scan, true);
   check_conversion(*scan, false);
   // The network path: the bytes as CDR through the reader's checked type.
-  static dds::CheckedType<litamin2::msg::PlainScanPubSubType> type;
+  static dds::CheckedType<litamin2_zero_copy::msg::PlainScanPubSubType> type;
   if (fuzz::deserialize(type, data, size, *scan)) check_conversion(*scan, true);
   return 0;
 }

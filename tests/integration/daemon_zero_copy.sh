@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The opt-in same-host zero-copy input: simulated scans -> litamin2-replay --zero-copy
-# (litamin2/PlainScan in loaned samples) -> litamin2d (streams[].zero_copy_topic, data-sharing
+# (litamin2_zero_copy/PlainScan in loaned samples) -> litamin2d (streams[].zero_copy_topic, data-sharing
 # reader, loans on take) -> daemon_probe, in a private network namespace, loopback profile.
 # Every frame of two parallel streams gets one odometry message whose pose is bit-identical to
 # litamin2-odometry's; no bad message, no drop; the writers' data-sharing segments appear in

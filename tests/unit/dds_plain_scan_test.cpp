@@ -27,16 +27,16 @@ PointCloud random_cloud(std::size_t n, bool with_times, unsigned seed = 1) {
 }
 
 // 2 MiB: never on the stack.
-std::unique_ptr<litamin2::msg::PlainScan> make_scan(const PointCloud& cloud) {
-  auto scan = std::make_unique<litamin2::msg::PlainScan>();
+std::unique_ptr<litamin2_zero_copy::msg::PlainScan> make_scan(const PointCloud& cloud) {
+  auto scan = std::make_unique<litamin2_zero_copy::msg::PlainScan>();
   to_plain_scan(cloud, Stamp::from_seconds(12.25), "velodyne", *scan);
   return scan;
 }
 
 TEST(PlainScan, SizeIsTheFixedLayout) {
   // stamp 8 + frame_id 64 + point_count 4 + has_times 4 + 131072 x 16 bytes.
-  EXPECT_EQ(sizeof(litamin2::msg::PlainScan), 2'097'232u);
-  EXPECT_EQ(sizeof(litamin2::msg::PlainPoint), 16u);
+  EXPECT_EQ(sizeof(litamin2_zero_copy::msg::PlainScan), 2'097'232u);
+  EXPECT_EQ(sizeof(litamin2_zero_copy::msg::PlainPoint), 16u);
 }
 
 TEST(PlainScan, RoundTripIsBitIdenticalToThePointCloud2Path) {
@@ -105,7 +105,7 @@ TEST(PlainScan, BadSamplesAreRejectedWithAReason) {
   CloudConversionOptions options;
   options.read_time = true;
   CloudConversion out;
-  auto check = [&](const litamin2::msg::PlainScan& scan, CloudError expected) {
+  auto check = [&](const litamin2_zero_copy::msg::PlainScan& scan, CloudError expected) {
     EXPECT_EQ(from_plain_scan(scan, options, out), expected) << out.message;
     EXPECT_FALSE(out.message.empty());
     EXPECT_TRUE(out.cloud.points.empty());
@@ -146,7 +146,7 @@ TEST(PlainScan, BadSamplesAreRejectedWithAReason) {
 }
 
 TEST(PlainScan, ToPlainScanRefusesWhatDoesNotFit) {
-  auto scan = std::make_unique<litamin2::msg::PlainScan>();
+  auto scan = std::make_unique<litamin2_zero_copy::msg::PlainScan>();
   EXPECT_THROW(to_plain_scan(random_cloud(kPlainScanCapacity + 1, false), Stamp(), "f", *scan),
                std::invalid_argument);
   EXPECT_THROW(to_plain_scan(random_cloud(1, false), Stamp(), std::string(64, 'f'), *scan),

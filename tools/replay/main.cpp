@@ -20,8 +20,8 @@
 #include "litamin2/dds/qos.hpp"
 #include "litamin2/dds/serialized_pointcloud2.hpp"
 #include "litamin2/io/io_error.hpp"
-#include "litamin2/msg/PlainScanPubSubTypes.h"
 #include "litamin2/service/topic_names.hpp"
+#include "litamin2_zero_copy/msg/PlainScanPubSubTypes.h"
 #include "replay/replay_options.hpp"
 #include "replay/stream_publisher.hpp"
 #include "sensor_msgs/msg/PointCloud2PubSubTypes.h"
@@ -92,10 +92,11 @@ int main(int argc, char** argv) {
   }
   // --preload publishes each scan's CDR bytes, serialised once before the start (as rosbag2
   // replays serialised messages): a write then costs a copy, not a serialisation.
-  // --zero-copy publishes litamin2/PlainScan into loaned samples (data-sharing on this host).
+  // --zero-copy publishes litamin2_zero_copy/PlainScan into loaned samples (data-sharing on this
+  // host).
   fdds::TypeSupport type(
       options.zero_copy
-          ? static_cast<fdds::TopicDataType*>(new litamin2::msg::PlainScanPubSubType())
+          ? static_cast<fdds::TopicDataType*>(new litamin2_zero_copy::msg::PlainScanPubSubType())
       : options.preload
           ? static_cast<fdds::TopicDataType*>(new litamin2::dds::SerializedPointCloud2Type())
           : new sensor_msgs::msg::PointCloud2PubSubType());

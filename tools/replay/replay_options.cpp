@@ -58,7 +58,8 @@ int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& sh
                "little CPU beside the subscribers; for benchmarks on one machine");
   auto* zero_copy = app.add_flag(
       "--zero-copy", options.zero_copy,
-      "Publish the fixed-size litamin2/PlainScan (not a ROS 2 type; at most 131072 points) on "
+      "Publish the fixed-size litamin2_zero_copy/PlainScan (not a ROS 2 type; at most 131072 "
+      "points) on "
       "rt/<stream>/plain_scan instead of PointCloud2 on rt/<stream>/points, for litamin2d's "
       "opt-in streams[].zero_copy_topic on this host: every scan is read before publishing "
       "and copied once into a sample loaned from the writer's data-sharing pool (reliable "

@@ -9,7 +9,7 @@
 
 #include "litamin2/dds/plain_scan_conversion.hpp"
 #include "litamin2/dds/pointcloud2_conversion.hpp"
-#include "litamin2/msg/PlainScan.h"
+#include "litamin2_zero_copy/msg/PlainScan.h"
 
 namespace litamin2::replay {
 
@@ -70,7 +70,7 @@ void StreamPublisher::run(Clock::time_point start, std::chrono::nanoseconds peri
       counters_.published++;
       if (plain_) {
         counters_.points += plain_points_;
-        counters_.bytes += plain_points_ * sizeof(litamin2::msg::PlainPoint);
+        counters_.bytes += plain_points_ * sizeof(litamin2_zero_copy::msg::PlainPoint);
       } else {
         counters_.points += preloaded ? scan.points : std::uint64_t{msg.width()} * msg.height();
         counters_.bytes += preloaded ? scan.data_bytes : msg.data().size();
@@ -122,7 +122,7 @@ bool StreamPublisher::preload_plain() {
   plain_clouds_.clear();
   plain_stamps_.clear();
   plain_clouds_.reserve(last_ - first_);
-  if (stream_.size() >= sizeof(litamin2::msg::PlainScan().frame_id())) {
+  if (stream_.size() >= sizeof(litamin2_zero_copy::msg::PlainScan().frame_id())) {
     error_ = "stream id '" + stream_ + "' is too long for a PlainScan's frame_id";
     return false;
   }
@@ -162,7 +162,7 @@ bool StreamPublisher::write_plain(std::size_t i, bool reliable, double timeout_s
     spdlog::warn("{}: loan_sample failed (code {})", stream_, rc());
     return false;
   }
-  auto* scan = static_cast<litamin2::msg::PlainScan*>(loaned);
+  auto* scan = static_cast<litamin2_zero_copy::msg::PlainScan*>(loaned);
   // Checked in preload_plain: the cloud fits and its times are valid.
   dds::to_plain_scan(cloud, plain_stamps_[i - first_], stream_, *scan);
   bool ok = writer_->write(loaned);

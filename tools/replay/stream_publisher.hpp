@@ -67,10 +67,10 @@ class StreamPublisher {
   /// error() set) if a scan cannot be read.
   bool preload();
   /// --zero-copy: reads every frame now (as preload) and keeps the clouds; run() then writes
-  /// each as a litamin2/PlainScan into a sample loaned from `writer` (DataWriter::loan_sample,
-  /// the writer's data-sharing pool on this host), copying the stored cloud once, so `writer`
-  /// must be of litamin2::msg::PlainScanPubSubType. False (with error() set) if a scan cannot be
-  /// read or holds more points than a PlainScan.
+  /// each as a litamin2_zero_copy/PlainScan into a sample loaned from `writer`
+  /// (DataWriter::loan_sample, the writer's data-sharing pool on this host), copying the stored
+  /// cloud once, so `writer` must be of litamin2_zero_copy::msg::PlainScanPubSubType. False (with
+  /// error() set) if a scan cannot be read or holds more points than a PlainScan.
   bool preload_plain();
 
  private:

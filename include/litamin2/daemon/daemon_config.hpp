@@ -36,8 +36,8 @@ struct StreamConfig {
   /// Identity when `inputs` is given (the merged scans are in the base frame already).
   Eigen::Isometry3d extrinsic = Eigen::Isometry3d::Identity();
   /// Opt-in same-host zero-copy input (YAML zero_copy_topic; empty: none, the default): a
-  /// second reader of the stream, of litamin2/PlainScan (a fixed-size type, not a ROS 2 one)
-  /// with data-sharing and loans, for a driver on this host (docs/ros2.md, "Zero-copy input").
+  /// second reader of the stream, of litamin2_zero_copy/PlainScan (a fixed-size type, not a ROS 2
+  /// one) with data-sharing and loans, for a driver on this host (docs/ros2.md, "Zero-copy input").
   /// Its scans go through the same checks and stamp order as the PointCloud2 topic's. Only for
   /// a stream of one `topic`.
   std::string zero_copy_topic;

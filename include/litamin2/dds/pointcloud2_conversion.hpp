@@ -41,7 +41,8 @@ enum class CloudError {
   kBadTimeField,
   /// A point with finite coordinates has a NaN or +-Inf intensity (when intensities are read).
   kNonFiniteIntensity,
-  /// A litamin2/PlainScan's frame_id has no NUL within its array (plain_scan_conversion.hpp).
+  /// A litamin2_zero_copy/PlainScan's frame_id has no NUL within its array
+  /// (plain_scan_conversion.hpp).
   kBadFrameId,
 };
 

@@ -15,7 +15,7 @@ namespace litamin2::dds {
 /// a reliable writer repair lost fragments of large scans. Keep-last `depth`.
 eprosima::fastdds::dds::DataReaderQos points_reader_qos(bool reliable = false,
                                                         std::int32_t depth = 10);
-/// Reader of a stream's zero-copy input (litamin2/PlainScan, streams[].zero_copy_topic):
+/// Reader of a stream's zero-copy input (litamin2_zero_copy/PlainScan, streams[].zero_copy_topic):
 /// reliable keep-last `depth` (it matches reliable writers only, so that a slow reader
 /// throttles the writer instead of having its loaned samples overwritten), preallocated
 /// history, data-sharing automatic (used when the writer is on this host and shares the

@@ -17,7 +17,7 @@
 #include "litamin2/dds/time_conversion.hpp"
 #include "litamin2/dds/transform_conversion.hpp"
 #include "litamin2/msg/MapPatchPubSubTypes.h"
-#include "litamin2/msg/PlainScanPubSubTypes.h"
+#include "litamin2_zero_copy/msg/PlainScanPubSubTypes.h"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 #include "sensor_msgs/msg/PointCloud2PubSubTypes.h"
 #include "tf2_msgs/msg/TFMessagePubSubTypes.h"
@@ -283,7 +283,7 @@ DaemonNode::Stream& DaemonNode::add_stream(StreamConfig config, std::optional<Ha
 void DaemonNode::attach_zero_copy_reader(Stream& s, const dds::CloudConversionOptions& conversion) {
   if (plain_scan_type_.empty())
     plain_scan_type_ =
-        dds::register_type(participant_.get(), new litamin2::msg::PlainScanPubSubType());
+        dds::register_type(participant_.get(), new litamin2_zero_copy::msg::PlainScanPubSubType());
   auto* zero_copy_topic = topic(s.config.zero_copy_topic, plain_scan_type_.get_type_name());
   if (!zero_copy_topic)
     throw std::runtime_error("stream " + s.config.id + ": cannot create topic " +
@@ -295,8 +295,8 @@ void DaemonNode::attach_zero_copy_reader(Stream& s, const dds::CloudConversionOp
   if (!s.zero_copy_reader)
     throw std::runtime_error("stream " + s.config.id + ": cannot create a reader of " +
                              s.config.zero_copy_topic);
-  spdlog::info("stream {}: reading {} (zero-copy, litamin2/PlainScan, data-sharing)", s.config.id,
-               s.config.zero_copy_topic);
+  spdlog::info("stream {}: reading {} (zero-copy, litamin2_zero_copy/PlainScan, data-sharing)",
+               s.config.id, s.config.zero_copy_topic);
 }
 
 fdds::Topic* DaemonNode::topic(const std::string& name, const std::string& type) {

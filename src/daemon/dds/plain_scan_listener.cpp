@@ -1,7 +1,7 @@
 #include "litamin2/daemon/dds/plain_scan_listener.hpp"
 
 #include "litamin2/dds/plain_scan_conversion.hpp"
-#include "litamin2/msg/PlainScan.h"
+#include "litamin2_zero_copy/msg/PlainScan.h"
 
 #include <fastdds/dds/core/LoanableSequence.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
@@ -17,7 +17,7 @@ PlainScanListener::PlainScanListener(PointsListener& points, dds::CloudConversio
     : points_(points), options_(options) {}
 
 void PlainScanListener::on_data_available(fdds::DataReader* reader) {
-  fdds::LoanableSequence<litamin2::msg::PlainScan> samples;
+  fdds::LoanableSequence<litamin2_zero_copy::msg::PlainScan> samples;
   fdds::SampleInfoSeq infos;
   while (reader->take(samples, infos, 1) == ReturnCode_t::RETCODE_OK) {
     for (fdds::LoanableCollection::size_type i = 0; i < samples.length(); ++i) {

@@ -1,6 +1,6 @@
 #pragma once
 /// The reader listener of a stream's opt-in zero-copy input (streams[].zero_copy_topic,
-/// litamin2/PlainScan, same host only): takes each sample as a loan (with data-sharing, a
+/// litamin2_zero_copy/PlainScan, same host only): takes each sample as a loan (with data-sharing, a
 /// pointer into the writer's shared-memory pool: no copy into a reader history, no
 /// deserialisation), converts it in place (dds::from_plain_scan), returns the loan, and hands
 /// the scan to the stream's PointsListener, which applies the same checks (bad or empty scan,
