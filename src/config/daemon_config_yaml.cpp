@@ -193,6 +193,8 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
           throw ConfigError(path + ": merge_window_s and merge_timeout_s need topics");
       }
       s.read("sensor_frame", stream.sensor_frame);
+      if (s.read("zero_copy_topic", stream.zero_copy_topic) && stream.zero_copy_topic.empty())
+        throw ConfigError(path + ".zero_copy_topic: empty (leave the key out for none)");
       const YAML::Node extrinsic = s.child("extrinsic");
       if (extrinsic && !extrinsic.IsNull()) {
         if (!stream.inputs.empty())

@@ -59,6 +59,14 @@ void validate(const DaemonConfig& config) {
       if (const auto why = scan_merger_config_error(stream.merge))
         throw ConfigError(path + "." + *why);
     }
+    if (!stream.zero_copy_topic.empty()) {
+      if (!stream.inputs.empty())
+        throw ConfigError(path + ".zero_copy_topic: only for a stream of one topic");
+      check_topic(stream.zero_copy_topic, path + ".zero_copy_topic");
+      if (!topics.insert(stream.zero_copy_topic).second)
+        throw ConfigError(path + ".zero_copy_topic: '" + stream.zero_copy_topic +
+                          "' is used by another stream or input");
+    }
     if (!stream.sensor_frame.empty()) check_frame(stream.sensor_frame, path + ".sensor_frame");
     try {
       validate(stream.tracker);

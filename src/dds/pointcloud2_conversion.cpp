@@ -172,6 +172,8 @@ const char* to_string(CloudError error) {
       return "bad_time_field";
     case CloudError::kNonFiniteIntensity:
       return "non_finite_intensity";
+    case CloudError::kBadFrameId:
+      return "bad_frame_id";
   }
   return "unknown";
 }

@@ -59,6 +59,20 @@ fdds::DataWriterQos points_writer_qos(bool best_effort, std::int32_t depth,
   return qos;
 }
 
+fdds::DataReaderQos zero_copy_reader_qos(std::int32_t depth) {
+  fdds::DataReaderQos qos = points_reader_qos(true, depth);
+  qos.endpoint().history_memory_policy = rtps::PREALLOCATED_MEMORY_MODE;
+  qos.data_sharing().automatic();
+  return qos;
+}
+
+fdds::DataWriterQos zero_copy_writer_qos(std::int32_t depth, std::int32_t max_blocking_ms) {
+  fdds::DataWriterQos qos = points_writer_qos(false, depth, max_blocking_ms);
+  qos.endpoint().history_memory_policy = rtps::PREALLOCATED_MEMORY_MODE;
+  qos.data_sharing().automatic();
+  return qos;
+}
+
 fdds::DataWriterQos odom_writer_qos(std::int32_t depth) {
   fdds::DataWriterQos qos = fdds::DATAWRITER_QOS_DEFAULT;
   common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::VOLATILE_DURABILITY_QOS,

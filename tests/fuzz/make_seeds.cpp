@@ -7,6 +7,7 @@
 #include "litamin2/dds/map_patch_conversion.hpp"
 #include "litamin2/dds/map_tile_conversion.hpp"
 #include "litamin2/dds/odometry_conversion.hpp"
+#include "litamin2/dds/plain_scan_conversion.hpp"
 #include "litamin2/dds/pointcloud2_conversion.hpp"
 #include "litamin2/msg/MapPatchPubSubTypes.h"
 #include "litamin2/msg/MapTilePubSubTypes.h"
@@ -24,6 +25,8 @@
 #include <limits>
 #include <string>
 #include <vector>
+
+#include <memory>
 
 #include <liblzf/lzf.h>
 
@@ -418,6 +421,32 @@ void text_seeds(const fs::path& config_dir) {
 
 }  // namespace
 
+/// PlainScan: the sample's memory, truncated after its points (the harness zero-fills the rest).
+void plain_scan_seeds() {
+  const std::string h = "plain_scan";
+  auto scan = std::make_unique<litamin2_zero_copy::msg::PlainScan>();
+  PointCloud cloud;
+  for (int i = 0; i < 6; ++i) {
+    cloud.points.emplace_back(1.0f + i, -2.0f * i, 0.5f);
+    cloud.times.push_back(0.01f * i - 0.03f);
+  }
+  auto bytes = [&](std::size_t points) {
+    return std::string(reinterpret_cast<const char*>(scan.get()), 80 + 16 * points);
+  };
+  dds::to_plain_scan(cloud, Stamp::from_seconds(7.5), "velodyne", *scan);
+  write(h, "valid", bytes(6));
+  scan->points()[2].x(std::numeric_limits<float>::quiet_NaN());
+  write(h, "valid-non-finite-point", bytes(6));
+  scan->points()[3].time(std::numeric_limits<float>::infinity());
+  write(h, "reject-non-finite-time", bytes(6));
+  dds::to_plain_scan(cloud, Stamp::from_seconds(7.5), "velodyne", *scan);
+  scan->point_count(0xFFFFFFFFu);
+  write(h, "reject-point-count", bytes(6));
+  dds::to_plain_scan(cloud, Stamp::from_seconds(7.5), "velodyne", *scan);
+  scan->frame_id().fill('x');
+  write(h, "reject-frame-id", bytes(6));
+}
+
 int main(int argc, char** argv) {
   if (argc != 3) {
     std::fprintf(stderr, "usage: %s CORPUS_DIR CONFIG_DIR\n", argv[0]);
@@ -428,6 +457,7 @@ int main(int argc, char** argv) {
   map_patch_seeds();
   map_tile_seeds();
   odometry_seeds();
+  plain_scan_seeds();
   record_codec_seeds();
   file_seeds();
   text_seeds(argv[2]);

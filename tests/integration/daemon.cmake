@@ -4,6 +4,10 @@
 #    every frame of two parallel streams gets one odometry message whose pose is bit-identical
 #    to litamin2-odometry's; status reports no drop; SIGTERM exits 0 within 2 s; then the
 #    shipped config's discovery (on another domain) starts a stream for a new publisher.
+#  - integration_daemon_zero_copy: the same through the opt-in same-host zero-copy input
+#    (litamin2-replay --zero-copy: PlainScan in loaned samples; litamin2d's zero_copy_topic:
+#    data-sharing reader, loans on take): poses bit-identical to litamin2-odometry's, no bad
+#    message or drop, data-sharing segments in /dev/shm.
 #  - integration_daemon_two_sensors: litamin2-sim --second-sensor -> litamin2-replay of two topics
 #    -> litamin2d with one stream of two `topics:` -> daemon_probe: one odometry message per
 #    sweep, bounded error against the ground truth, merge counters complete; the rear sensor
@@ -25,6 +29,10 @@ if(TARGET litamin2d)
       COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/daemon_replay.sh ${CMAKE_BINARY_DIR}
         ${CMAKE_CURRENT_BINARY_DIR}/daemon_replay ${CMAKE_SOURCE_DIR})
     set_tests_properties(integration_daemon_replay PROPERTIES TIMEOUT 600 RUN_SERIAL TRUE)
+    add_test(NAME integration_daemon_zero_copy
+      COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/daemon_zero_copy.sh ${CMAKE_BINARY_DIR}
+        ${CMAKE_CURRENT_BINARY_DIR}/daemon_zero_copy)
+    set_tests_properties(integration_daemon_zero_copy PROPERTIES TIMEOUT 600 RUN_SERIAL TRUE)
     add_test(NAME integration_daemon_two_sensors
       COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/daemon_two_sensors.sh ${CMAKE_BINARY_DIR}
         ${CMAKE_CURRENT_BINARY_DIR}/daemon_two_sensors)

@@ -10,6 +10,10 @@
 #   PRELOAD=0    the replay reads scans while publishing instead of publishing CDR bytes
 #                serialised before the start (litamin2-replay --preload, the default)
 #   STAGGER=1    spread the streams over the period (litamin2-replay --stagger)
+#   ZERO_COPY=1  the streams' opt-in same-host zero-copy input instead of PointCloud2: each
+#                stream gets zero_copy_topic rt/<id>/plain_scan and the replay publishes
+#                litamin2_zero_copy/PlainScan there into loaned samples (litamin2-replay
+#                --zero-copy, scans read before the start as with --preload; PRELOAD is ignored)
 #   PIN=1        one core each: the replay and the probe on CPU 0, litamin2d with one worker
 #                thread (threads: 1) on CPU 1, the offline run on CPU 1 too (taskset), so the
 #                figures are one daemon core's capacity
@@ -78,7 +82,11 @@ run_once() {
     echo "queue_depth: ${QUEUE_DEPTH:-4}"
     echo "outputs: {status_period_s: 0.5}"
     echo "streams:"
-    for i in $(seq 1 "$n"); do echo "  - id: bench_$i"; ids+=("bench_$i"); done
+    for i in $(seq 1 "$n"); do
+      echo "  - id: bench_$i"
+      if [ "${ZERO_COPY:-0}" = 1 ]; then echo "    zero_copy_topic: rt/bench_$i/plain_scan"; fi
+      ids+=("bench_$i")
+    done
   } > "$dir/bench.yaml"
   "${daemon_cpu[@]}" "$tools/litamin2d/litamin2d" --config "$dir/bench.yaml" > "$dir/daemon.log" 2>&1 &
   local daemon_pid=$!
@@ -99,6 +107,7 @@ run_once() {
   # The replay serialises every scan before publishing (PRELOAD=0: reads while publishing), so
   # that on this one machine it does not take CPU from the daemon it measures.
   if [ "${PRELOAD:-1}" = 1 ]; then replay_args=(--preload); fi
+  if [ "${ZERO_COPY:-0}" = 1 ]; then replay_args=(--zero-copy); fi
   # STAGGER=1 spreads the streams' frames over the period (independent sensors); default: every
   # stream publishes at the same instant, the worst case for latency.
   if [ "${STAGGER:-0}" = 1 ] && [ "$rate" != max ]; then replay_args+=(--stagger); fi
@@ -128,7 +137,7 @@ run_once() {
   wait $daemon_pid || true
   python3 - "$n" "$frames" "$start" "$end" "$offline_fps" "$cpu_start" "$cpu_end" \
     "$(getconf CLK_TCK)" "$rate" "$points_per_scan" "$dir" <<'PY'
-import json, re, sys
+import json, os, re, sys
 n, frames = int(sys.argv[1]), int(sys.argv[2])
 start, end, offline_fps = map(float, sys.argv[3:6])
 cpu_start, cpu_end, ticks = float(sys.argv[6]), float(sys.argv[7]), float(sys.argv[8])
@@ -160,6 +169,7 @@ result = {
     "dds_path_cpu_ms_per_frame": daemon_ms - tracking_ms if processed else None,
     "dds_path_share_of_tracking": (daemon_ms - tracking_ms) / tracking_ms if processed and tracking_ms > 0 else None,
     "wall_s": end - start,
+    "input": "plain_scan" if os.environ.get("ZERO_COPY", "0") == "1" else "pointcloud2",
 }
 json.dump(result, open(out + "/result.json", "w"), indent=1)
 fmt = lambda v, f="%.2f": "-" if v is None else f % v

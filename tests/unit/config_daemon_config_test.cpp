@@ -216,6 +216,26 @@ streams:
   EXPECT_EQ(d.streams[0].merge.timeout_s, ScanMergerConfig().timeout_s);
 }
 
+TEST(DaemonConfig, ZeroCopyTopicIsOptInAndValidated) {
+  const DaemonConfig d =
+      parse("streams: [{id: a, zero_copy_topic: rt/a/plain_scan}, {id: b}]\ndiscovery: "
+            "{enabled: false}\n");
+  EXPECT_EQ(d.streams[0].zero_copy_topic, "rt/a/plain_scan");
+  EXPECT_EQ(d.streams[0].topic, "rt/a/points");
+  EXPECT_EQ(d.streams[1].zero_copy_topic, "");
+  EXPECT_EQ(error_of("streams: [{id: a, zero_copy_topic: ''}]"),
+            "streams[0].zero_copy_topic: empty (leave the key out for none)");
+  EXPECT_EQ(error_of("streams: [{id: a, zero_copy_topic: 'rt/a plain'}]"),
+            "streams[0].zero_copy_topic: 'rt/a plain' is not a valid topic name");
+  EXPECT_EQ(error_of("streams: [{id: a, zero_copy_topic: rt/a/points}]"),
+            "streams[0].zero_copy_topic: 'rt/a/points' is used by another stream or input");
+  EXPECT_EQ(error_of("streams: [{id: a, zero_copy_topic: rt/b/points}, {id: b}]"),
+            "streams[1].topic: 'rt/b/points' is used by another stream");
+  EXPECT_EQ(error_of("streams: [{id: a, zero_copy_topic: rt/a/z, topics: [{topic: rt/a/front, "
+                     "extrinsic: {xyz: [1, 0, 0]}}]}]"),
+            "streams[0].zero_copy_topic: only for a stream of one topic");
+}
+
 TEST(DaemonConfig, SeveralTopicsErrors) {
   const std::string front = "{topic: rt/a/front, extrinsic: {xyz: [1, 0, 0]}}";
   EXPECT_EQ(error_of("streams: [{id: a, topics: []}]"),

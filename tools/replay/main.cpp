@@ -21,6 +21,7 @@
 #include "litamin2/dds/serialized_pointcloud2.hpp"
 #include "litamin2/io/io_error.hpp"
 #include "litamin2/service/topic_names.hpp"
+#include "litamin2_zero_copy/msg/PlainScanPubSubTypes.h"
 #include "replay/replay_options.hpp"
 #include "replay/stream_publisher.hpp"
 #include "sensor_msgs/msg/PointCloud2PubSubTypes.h"
@@ -91,9 +92,14 @@ int main(int argc, char** argv) {
   }
   // --preload publishes each scan's CDR bytes, serialised once before the start (as rosbag2
   // replays serialised messages): a write then costs a copy, not a serialisation.
-  fdds::TypeSupport type(options.preload ? static_cast<fdds::TopicDataType*>(
-                                               new litamin2::dds::SerializedPointCloud2Type())
-                                         : new sensor_msgs::msg::PointCloud2PubSubType());
+  // --zero-copy publishes litamin2_zero_copy/PlainScan into loaned samples (data-sharing on this
+  // host).
+  fdds::TypeSupport type(
+      options.zero_copy
+          ? static_cast<fdds::TopicDataType*>(new litamin2_zero_copy::msg::PlainScanPubSubType())
+      : options.preload
+          ? static_cast<fdds::TopicDataType*>(new litamin2::dds::SerializedPointCloud2Type())
+          : new sensor_msgs::msg::PointCloud2PubSubType());
   type.register_type(participant.get());
   fdds::Publisher* publisher = participant->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
   if (!publisher) {
@@ -102,11 +108,14 @@ int main(int argc, char** argv) {
   }
   const auto blocking_ms = static_cast<std::int32_t>(std::min(options.timeout_s, 1e6) * 1000.0);
   const fdds::DataWriterQos writer_qos =
-      litamin2::dds::points_writer_qos(options.best_effort, options.depth, blocking_ms);
+      options.zero_copy
+          ? litamin2::dds::zero_copy_writer_qos(options.depth, blocking_ms)
+          : litamin2::dds::points_writer_qos(options.best_effort, options.depth, blocking_ms);
   std::vector<std::unique_ptr<StreamPublisher>> streams;
   for (std::size_t s = 0; s < options.streams.size(); ++s) {
     const auto& spec = options.streams[s];
-    const std::string topic_name = litamin2::service::points_topic(spec.id);
+    const std::string topic_name = options.zero_copy ? "rt/" + spec.id + "/plain_scan"
+                                                     : litamin2::service::points_topic(spec.id);
     fdds::Topic* topic =
         participant->create_topic(topic_name, type.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
     fdds::DataWriter* writer = topic ? publisher->create_datawriter(topic, writer_qos) : nullptr;
@@ -118,7 +127,21 @@ int main(int argc, char** argv) {
                                                         ranges[s].second, writer));
     spdlog::info("stream {}: {} frames [{}, {}) of {} on {} ({})", spec.id,
                  ranges[s].second - ranges[s].first, ranges[s].first, ranges[s].second, spec.folder,
-                 topic_name, options.best_effort ? "best-effort" : "reliable keep-all");
+                 topic_name,
+                 options.zero_copy     ? "PlainScan, loaned samples, reliable keep-all"
+                 : options.best_effort ? "best-effort"
+                                       : "reliable keep-all");
+  }
+  if (options.zero_copy) {
+    const auto preload_start = Clock::now();
+    for (const auto& stream : streams) {
+      if (!stream->preload_plain()) {
+        spdlog::error("stream {}: cannot preload: {}", stream->stream(), stream->error());
+        return kExitError;
+      }
+    }
+    spdlog::info("read {} stream(s) for --zero-copy in {:.1f} s", streams.size(),
+                 std::chrono::duration<double>(Clock::now() - preload_start).count());
   }
 
   if (options.preload) {

@@ -56,6 +56,14 @@ int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& sh
                "publish the stored bytes, as a recorder replays serialised messages (memory: ~2 "
                "MB per HDL-64 scan and stream, freed as written), so that the publisher costs "
                "little CPU beside the subscribers; for benchmarks on one machine");
+  auto* zero_copy = app.add_flag(
+      "--zero-copy", options.zero_copy,
+      "Publish the fixed-size litamin2_zero_copy/PlainScan (not a ROS 2 type; at most 131072 "
+      "points) on "
+      "rt/<stream>/plain_scan instead of PointCloud2 on rt/<stream>/points, for litamin2d's "
+      "opt-in streams[].zero_copy_topic on this host: every scan is read before publishing "
+      "and copied once into a sample loaned from the writer's data-sharing pool (reliable "
+      "keep-all, --depth samples)");
   app.add_option("--domain", domain, "DDS domain id (default 0)")->check(CLI::Range(0, 232));
   app.add_option("--profile", profile,
                  "Transport: loopback (default: 127.0.0.1 and shared memory only), shm, default, "
@@ -80,6 +88,7 @@ int parse_replay_options(int argc, char** argv, ReplayOptions& options, bool& sh
                "Best-effort keep-last writers (default: reliable keep-all)");
   app.add_option("--depth", options.depth, "Writer history depth (default 10)")
       ->check(CLI::Range(1, 10000));
+  zero_copy->excludes("--preload")->excludes("--best-effort");
   app.add_option("SEQUENCE_DIR", folders, "Sequence folders, one per --stream")->required();
 
   tools::init_cli(app, "litamin2-replay");

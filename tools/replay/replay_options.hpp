@@ -42,6 +42,11 @@ struct ReplayOptions {
   /// machine). Costs the scans' size in memory (~2 MB per HDL-64 scan and stream); each is
   /// freed once written.
   bool preload = false;
+  /// Publish litamin2_zero_copy/PlainScan on rt/<id>/plain_scan (a stream's opt-in zero-copy input,
+  /// streams[].zero_copy_topic; same host only) instead of PointCloud2 on rt/<id>/points: every
+  /// scan is read before the first is published and copied once into a sample loaned from the
+  /// writer's data-sharing pool. Excludes --preload and --best-effort.
+  bool zero_copy = false;
   /// Spread the streams' schedules over one period (stream s starts s/N of a period later),
   /// as independent sensors are, instead of publishing every stream's frame at the same instant.
   bool stagger = false;

@@ -9,6 +9,8 @@
 
 #include <fastdds/dds/publisher/DataWriter.hpp>
 
+#include "litamin2/core/point_cloud.hpp"
+#include "litamin2/core/stamp.hpp"
 #include "litamin2/dds/serialized_pointcloud2.hpp"
 #include "litamin2/io/kitti_sequence.hpp"
 #include "sensor_msgs/msg/PointCloud2.h"
@@ -64,6 +66,12 @@ class StreamPublisher {
   /// then writes the stored bytes, so `writer` must be of SerializedPointCloud2Type. False (with
   /// error() set) if a scan cannot be read.
   bool preload();
+  /// --zero-copy: reads every frame now (as preload) and keeps the clouds; run() then writes
+  /// each as a litamin2_zero_copy/PlainScan into a sample loaned from `writer`
+  /// (DataWriter::loan_sample, the writer's data-sharing pool on this host), copying the stored
+  /// cloud once, so `writer` must be of litamin2_zero_copy::msg::PlainScanPubSubType. False (with
+  /// error() set) if a scan cannot be read or holds more points than a PlainScan.
+  bool preload_plain();
 
  private:
   std::string stream_;
@@ -75,6 +83,13 @@ class StreamPublisher {
   std::string error_;
   /// Frames [first, last) serialised by preload(), released as they are written.
   std::vector<dds::SerializedPointCloud2> preloaded_;
+  /// Frames [first, last) read by preload_plain(), with their stamps, released as written.
+  std::vector<PointCloud> plain_clouds_;
+  std::vector<Stamp> plain_stamps_;
+  bool plain_ = false;
+  std::uint64_t plain_points_ = 0;
+  /// Loans a sample, writes cloud i - first_ into it and writes it (retried once as in run()).
+  bool write_plain(std::size_t i, bool reliable, double timeout_s, const std::atomic<bool>& stop);
   /// Reads and converts frame i into `msg`; false (error_ set) if it cannot be read.
   bool convert(std::size_t i, sensor_msgs::msg::PointCloud2& msg);
   double elapsed_s_ = 0.0;

@@ -35,6 +35,12 @@ struct StreamConfig {
   /// Sensor pose in the vehicle (base) frame; the published odometry is the base's pose.
   /// Identity when `inputs` is given (the merged scans are in the base frame already).
   Eigen::Isometry3d extrinsic = Eigen::Isometry3d::Identity();
+  /// Opt-in same-host zero-copy input (YAML zero_copy_topic; empty: none, the default): a
+  /// second reader of the stream, of litamin2_zero_copy/PlainScan (a fixed-size type, not a ROS 2
+  /// one) with data-sharing and loans, for a driver on this host (docs/ros2.md, "Zero-copy input").
+  /// Its scans go through the same checks and stamp order as the PointCloud2 topic's. Only for
+  /// a stream of one `topic`.
+  std::string zero_copy_topic;
   /// Several sensors of the vehicle (YAML `topics:`): their scans, each moved to the base
   /// frame by its extrinsic, merged by stamp into one frame per sweep for the one tracker.
   /// Empty: the single `topic`.

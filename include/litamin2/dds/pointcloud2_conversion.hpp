@@ -41,6 +41,9 @@ enum class CloudError {
   kBadTimeField,
   /// A point with finite coordinates has a NaN or +-Inf intensity (when intensities are read).
   kNonFiniteIntensity,
+  /// A litamin2_zero_copy/PlainScan's frame_id has no NUL within its array
+  /// (plain_scan_conversion.hpp).
+  kBadFrameId,
 };
 
 /// Short name of an error ("missing_field", ...), for counters and logs.

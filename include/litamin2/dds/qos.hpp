@@ -15,6 +15,16 @@ namespace litamin2::dds {
 /// a reliable writer repair lost fragments of large scans. Keep-last `depth`.
 eprosima::fastdds::dds::DataReaderQos points_reader_qos(bool reliable = false,
                                                         std::int32_t depth = 10);
+/// Reader of a stream's zero-copy input (litamin2_zero_copy/PlainScan, streams[].zero_copy_topic):
+/// reliable keep-last `depth` (it matches reliable writers only, so that a slow reader
+/// throttles the writer instead of having its loaned samples overwritten), preallocated
+/// history, data-sharing automatic (used when the writer is on this host and shares the
+/// domain; Fast DDS falls back to its transports otherwise).
+eprosima::fastdds::dds::DataReaderQos zero_copy_reader_qos(std::int32_t depth = 10);
+/// Writer of a zero-copy input (litamin2-replay --zero-copy): points_writer_qos's reliable
+/// keep-all with `depth` samples, preallocated, data-sharing automatic.
+eprosima::fastdds::dds::DataWriterQos zero_copy_writer_qos(std::int32_t depth,
+                                                           std::int32_t max_blocking_ms);
 /// Writer of rt/<stream>/points (the replay tool): reliable keep-all by default, so that a
 /// slower reader throttles the writer instead of losing scans (the writer blocks in write()
 /// for up to `max_blocking_ms` when its history is full); best_effort: keep-last `depth`.

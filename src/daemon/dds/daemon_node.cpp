@@ -3,6 +3,7 @@
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "litamin2/daemon/dds/daemon_metrics.hpp"
 #include "litamin2/daemon/dds/dds_stream_sink.hpp"
+#include "litamin2/daemon/dds/plain_scan_listener.hpp"
 #include "litamin2/daemon/dds/points_listener.hpp"
 #include "litamin2/daemon/dds/status_message.hpp"
 #include "litamin2/daemon/merged_input.hpp"
@@ -16,6 +17,7 @@
 #include "litamin2/dds/time_conversion.hpp"
 #include "litamin2/dds/transform_conversion.hpp"
 #include "litamin2/msg/MapPatchPubSubTypes.h"
+#include "litamin2_zero_copy/msg/PlainScanPubSubTypes.h"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 #include "sensor_msgs/msg/PointCloud2PubSubTypes.h"
 #include "tf2_msgs/msg/TFMessagePubSubTypes.h"
@@ -67,6 +69,10 @@ struct DaemonNode::Stream {
   std::vector<Input> inputs;
   /// Several sensors: their scans merged into the frames queued on `handle`.
   std::unique_ptr<MergedInput> merged;
+  /// The opt-in zero-copy input (config.zero_copy_topic): read from the start, whatever
+  /// discovery reports, until shutdown.
+  std::unique_ptr<PlainScanListener> zero_copy_listener;
+  fdds::DataReader* zero_copy_reader = nullptr;
   std::uint64_t reported_dropped = 0;
   std::uint64_t reported_missing = 0;
   std::uint64_t reported_bad = 0;
@@ -265,12 +271,32 @@ DaemonNode::Stream& DaemonNode::add_stream(StreamConfig config, std::optional<Ha
           [merged, i](Frame frame) { merged->add(i, std::move(frame)); },
           [merged] { merged->restart(); }, s.stats, conversion);
   }
+  if (!s.config.zero_copy_topic.empty()) attach_zero_copy_reader(s, conversion);
   spdlog::info("stream {}: {} -> {}{}", s.config.id, input_topics(s), odom_topic_name,
                tf_writer_
                    ? fmt::format(", tf {} -> {} -> {}", frames.odom, frames.base, frames.sensor)
                    : std::string());
   streams_.push_back(std::move(stream));
   return s;
+}
+
+void DaemonNode::attach_zero_copy_reader(Stream& s, const dds::CloudConversionOptions& conversion) {
+  if (plain_scan_type_.empty())
+    plain_scan_type_ =
+        dds::register_type(participant_.get(), new litamin2_zero_copy::msg::PlainScanPubSubType());
+  auto* zero_copy_topic = topic(s.config.zero_copy_topic, plain_scan_type_.get_type_name());
+  if (!zero_copy_topic)
+    throw std::runtime_error("stream " + s.config.id + ": cannot create topic " +
+                             s.config.zero_copy_topic);
+  s.zero_copy_listener = std::make_unique<PlainScanListener>(*s.inputs[0].listener, conversion);
+  s.zero_copy_reader = subscriber_->create_datareader(
+      zero_copy_topic, dds::zero_copy_reader_qos(), s.zero_copy_listener.get(),
+      fdds::StatusMask::data_available() << fdds::StatusMask::subscription_matched());
+  if (!s.zero_copy_reader)
+    throw std::runtime_error("stream " + s.config.id + ": cannot create a reader of " +
+                             s.config.zero_copy_topic);
+  spdlog::info("stream {}: reading {} (zero-copy, litamin2_zero_copy/PlainScan, data-sharing)",
+               s.config.id, s.config.zero_copy_topic);
 }
 
 fdds::Topic* DaemonNode::topic(const std::string& name, const std::string& type) {
@@ -632,6 +658,11 @@ DrainResult DaemonNode::shutdown() {
   stopped_ = true;
   for (auto& s : streams_) {
     detach_reader(*s);
+    if (s->zero_copy_reader) {
+      s->zero_copy_reader->set_listener(nullptr);
+      subscriber_->delete_datareader(s->zero_copy_reader);
+      s->zero_copy_reader = nullptr;
+    }
     // A merged frame still waiting for a sensor is queued with what arrived.
     if (s->merged) s->merged->flush();
   }

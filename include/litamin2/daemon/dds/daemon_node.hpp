@@ -22,6 +22,7 @@
 #include "litamin2/daemon/membership.hpp"
 #include "litamin2/daemon/stream_scheduler.hpp"
 #include "litamin2/dds/participant_factory.hpp"
+#include "litamin2/dds/pointcloud2_conversion.hpp"
 #include "litamin2/service/topic_names.hpp"
 
 #include <fastdds/dds/topic/TypeSupport.hpp>
@@ -103,6 +104,8 @@ class DaemonNode {
   static std::string input_topics(const Stream& stream);
   void on_writer(const DiscoveredWriter& writer);
   void attach_reader(Stream& stream, Input& input, bool reliable);
+  /// The stream's zero-copy reader of config.zero_copy_topic (PlainScan, data-sharing, loans).
+  void attach_zero_copy_reader(Stream& stream, const dds::CloudConversionOptions& conversion);
   void detach_reader(Input& input);
   /// Every input's reader.
   void detach_reader(Stream& stream);
@@ -113,6 +116,8 @@ class DaemonNode {
   std::unique_ptr<PublisherDiscovery> discovery_;
   dds::ParticipantPtr participant_;
   eprosima::fastdds::dds::TypeSupport points_type_;
+  /// Registered with the first stream that has a zero_copy_topic.
+  eprosima::fastdds::dds::TypeSupport plain_scan_type_;
   eprosima::fastdds::dds::TypeSupport odom_type_;
   eprosima::fastdds::dds::TypeSupport map_patch_type_;
   eprosima::fastdds::dds::TypeSupport status_type_;

@@ -54,7 +54,19 @@ class PointsListener : public eprosima::fastdds::dds::DataReaderListener {
   /// Samples DDS reported lost (best-effort fragments that did not arrive).
   std::uint64_t samples_lost() const { return samples_lost_.load(); }
 
+  /// The checks after conversion (a bad or empty scan, the stamp order) and the hand-over, for
+  /// a scan converted by this listener or by another reader of the same stream (the zero-copy
+  /// input, PlainScanListener). Moves the cloud out of `conversion` when the scan is accepted.
+  /// `kind` names the message type in logs.
+  void accept(dds::CloudConversion& conversion, const builtin_interfaces::msg::Time& stamp_msg,
+              std::chrono::steady_clock::time_point arrival, const char* kind = "PointCloud2");
+  /// Counts a bad message of another reader of the stream (`reason` is its counter's label)
+  /// and logs it, rate-limited, as this listener logs its own.
+  void reject(const char* kind, const char* reason, const std::string& detail);
+
  private:
+  void log_bad(const char* kind, const char* what, const std::string& detail);
+
   const std::string stream_;
   const Deliver deliver_;
   const NewPublisher new_publisher_;
