@@ -7,6 +7,8 @@
 #    byte-identical.
 #  - integration_aggregator_fleet_bench: litamin2-fleet-bench at small sizes, as a
 #    correctness test (loops, ATE, restart from the tables of a 20k-keyframe store).
+#  - integration_aggregator_fleet_bench_stop: the bench stopped by --max-wall-s and by SIGTERM
+#    finishes as at the end and writes a valid summary marked stopped_early.
 #  - integration_map_tiles: the map tiles on rt/litamin2/map_tiles and litamin2-map-tiles
 #    (content-filtered box, early and late-joining clients, revisions across a restart).
 #  - integration_aggregator_errors: corrupt store (aggregator and export exit non-zero naming
@@ -37,6 +39,10 @@ if(TARGET litamin2-aggregator)
       COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/aggregator_fleet_bench.sh ${CMAKE_BINARY_DIR}
         ${CMAKE_CURRENT_BINARY_DIR}/aggregator_fleet_bench)
     set_tests_properties(integration_aggregator_fleet_bench PROPERTIES TIMEOUT 600)
+    add_test(NAME integration_aggregator_fleet_bench_stop
+      COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/aggregator_fleet_bench_stop.sh ${CMAKE_BINARY_DIR}
+        ${CMAKE_CURRENT_BINARY_DIR}/aggregator_fleet_bench_stop)
+    set_tests_properties(integration_aggregator_fleet_bench_stop PROPERTIES TIMEOUT 300)
   endif()
   if(TARGET litamin2-sim)
     add_test(NAME integration_aggregator_restart

@@ -25,6 +25,7 @@ echo "== 1: 10 vehicles, 3000 keyframes, loop closure"
   > small.out 2> small.log || { cat small.log; exit 1; }
 cat small.json
 [ "$(field small.json keyframes)" -eq 3000 ] || { echo "keyframes missing"; exit 1; }
+[ "$(field small.json stopped_early)" = false ] || { echo "stopped early"; exit 1; }
 [ "$(field small.json loops)" -gt 0 ] || { echo "no loop found"; exit 1; }
 [ "$(field small.json restart_identical)" = true ] || { echo "restart differs"; exit 1; }
 awk -v a="$(field small.json ate_m)" 'BEGIN { exit !(a < 3.0) }' ||

@@ -45,7 +45,8 @@ TEST(MappingLocalOptimization, EndsCloseToTheFullOptimisation) {
   ASSERT_EQ(local.loops().size(), full.loops().size());
   // Tolerance (the drive drifts by 1.0 m without loops): the local optimisations alone, and
   // the full pass over 10-keyframe segments, end within 0.15 m of the keyframe-level full
-  // optimisation (measured: 0.10 and 0.09 m).
+  // optimisation (measured with the default local_hold_loops 2: 0.085 and 0.079 m; 0.10 and
+  // 0.09 m with every older end freed).
   const double local_gap = largest_difference(local, full);
   const double segment_gap = largest_difference(segments, full);
   EXPECT_LT(local_gap, 0.15);
@@ -60,6 +61,7 @@ TEST(MappingLocalOptimization, HeldOlderEndsStayConstantAndEndCloseToTheFull) {
   const auto keyframes = drive("a", out_and_back(), 0.05, 1);
   MapperConfig config;
   config.place.min_travel_gap = 20.0;
+  config.graph.local_hold_loops = 0;  // every older end freed (the default holds at 2)
   MapperConfig holding = config;
   holding.graph.local_hold_loops = 1;
   MapperConfig keyframe_level = config;

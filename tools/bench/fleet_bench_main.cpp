@@ -7,6 +7,11 @@
 // tiles and summary into a counting sink. The DDS ingest bench
 // (tests/integration/aggregator_bench.sh) covers the transport. Writes a JSON summary
 // (docs/benchmarks.md).
+//
+// --max-wall-s, SIGINT and SIGTERM stop the feeding early: the generator makes no more
+// keyframes, the mapping thread ingests what is queued and stops as at the normal end, the
+// store is reopened (restart) and the JSON holds the keyframes reached, "stopped_early" and
+// "target_keyframes". A second SIGINT/SIGTERM after that ends the process at once.
 
 #include "common/cli.hpp"
 #include "fleet_drive.hpp"
@@ -17,12 +22,14 @@
 #include "litamin2/aggregator/patch_queue.hpp"
 #include "litamin2/core/stopwatch.hpp"
 #include "litamin2/io/trajectory.hpp"
+#include "litamin2/service/service_signals.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -31,6 +38,7 @@
 #include <iostream>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -45,6 +53,7 @@ namespace {
 struct Options {
   int vehicles = 100;
   std::size_t keyframes = 10000;
+  double max_wall_s = 0.0;
   std::string store = "fleet-bench.db";
   std::string json;
   std::string trajectories;
@@ -130,6 +139,10 @@ int main(int argc, char** argv) {
   Options o;
   app.add_option("--vehicles", o.vehicles, "vehicles (streams)")->check(CLI::Range(1, 100000));
   app.add_option("--keyframes", o.keyframes, "keyframes in all")->check(CLI::Range(1, 100000000));
+  app.add_option("--max-wall-s", o.max_wall_s,
+                 "stop feeding after this many seconds of wall time and finish as at the end "
+                 "(0: no bound; SIGINT/SIGTERM do the same)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--store", o.store, "the store to create (removed first)");
   app.add_option("--json", o.json, "summary JSON");
   app.add_option("--trajectories", o.trajectories,
@@ -162,6 +175,10 @@ int main(int argc, char** argv) {
   app.add_option("--seed", o.seed, "world and fleet seed");
   app.add_flag("--keep-store", o.keep_store, "use an existing store instead of removing it");
   if (const auto status = litamin2::tools::parse_cli(app, argc, argv)) return *status;
+  // SIGINT/SIGTERM blocked before any thread exists; the main thread collects them while the
+  // generator feeds (no async handler).
+  std::optional<service::ServiceSignals> signals;
+  signals.emplace();
 
   if (!o.keep_store) {
     for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(o.store + suffix);
@@ -204,6 +221,9 @@ int main(int argc, char** argv) {
   std::mutex truth_mutex;
   PatchQueue queue(static_cast<std::size_t>(4 * o.vehicles));
   double distributions_total = 0.0;  // the generator's; read after it is joined
+  std::size_t made = 0;              // the generator's; read after it is joined
+  std::atomic<bool> stop_feeding{false}, generator_done{false};
+  const auto wall_start = Clock::now();
   std::thread generator([&] {
     std::vector<FleetVehicleDrive> drives;
     std::vector<std::mt19937> rngs;
@@ -212,9 +232,8 @@ int main(int argc, char** argv) {
       rngs.emplace_back(o.seed * 104729u + static_cast<unsigned>(v));
     }
     Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
-    std::size_t made = 0;
-    for (std::uint64_t k = 0; made < o.keyframes; ++k) {
-      for (int v = 0; v < o.vehicles && made < o.keyframes; ++v, ++made) {
+    for (std::uint64_t k = 0; made < o.keyframes && !stop_feeding; ++k) {
+      for (int v = 0; v < o.vehicles && made < o.keyframes && !stop_feeding; ++v, ++made) {
         FleetVehicleDrive& d = drives[static_cast<std::size_t>(v)];
         d.next();
         if (k == 0 && v == 0) origin = d.truth().inverse();
@@ -229,10 +248,14 @@ int main(int argc, char** argv) {
           std::lock_guard lock(truth_mutex);
           truth[kf.key] = origin * d.truth();
         }
-        if (!queue.push(std::move(kf))) return;
+        if (!queue.push(std::move(kf))) {
+          generator_done = true;
+          return;
+        }
       }
     }
     queue.close();
+    generator_done = true;
   });
 
   std::size_t keyframes = 0, loops = 0, full_passes = 0;
@@ -244,7 +267,8 @@ int main(int argc, char** argv) {
   std::size_t tiles = 0, map_pending = 0, diverged = 0;
   mapping::MapperStats final_stats;
   mapping::TileMapStats tile_stats;
-  const auto wall_start = Clock::now();
+  std::string stop_reason;  // why the feeding stopped before the target ("" if it did not)
+  double feed_wall_s = 0.0;
   {
     AggregatorCore core(o.store, store::OpenMode::kCreateIfMissing, mapper, {}, {}, core_options);
     MappingWorker worker(core, queue, sink, config);
@@ -273,7 +297,7 @@ int main(int argc, char** argv) {
       loop_latency_ms.insert(loop_latency_ms.end(), turn.loop_latency_ms.begin(),
                              turn.loop_latency_ms.end());
       if (keyframes < next_report) return;
-      next_report += keyframes < 100000 ? 10000 : 100000;
+      next_report += keyframes < 100000 ? 10000 : 50000;
       std::fprintf(stderr,
                    "%zu keyframes, %zu loops, %.2f ms/keyframe (last 10k), rss %.0f MB, %.0f s\n",
                    keyframes, core.mapper().loops().size(),
@@ -334,7 +358,31 @@ int main(int argc, char** argv) {
       reported_keyframes = keyframes;
     });
     worker.start();
+    // Until the generator is done, the wall-time bound is reached or SIGINT/SIGTERM arrives.
+    while (!generator_done) {
+      const int signal = signals->wait_for(std::chrono::milliseconds(200));
+      if (signal == SIGINT || signal == SIGTERM) {
+        stop_reason = signal == SIGINT ? "SIGINT" : "SIGTERM";
+        break;
+      }
+      if (o.max_wall_s > 0.0 &&
+          std::chrono::duration<double>(Clock::now() - wall_start).count() >= o.max_wall_s) {
+        stop_reason = "max_wall_s";
+        break;
+      }
+    }
+    stop_feeding = true;
     generator.join();
+    // From here a SIGINT/SIGTERM takes its default action (ends the process).
+    signals.reset();
+    feed_wall_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
+    if (made >= o.keyframes) stop_reason.clear();
+    if (!stop_reason.empty()) {
+      std::fprintf(stderr,
+                   "fleet-bench: stopped feeding (%s) at %zu of %zu keyframes after %.0f s; "
+                   "ingesting what is queued\n",
+                   stop_reason.c_str(), made, o.keyframes, feed_wall_s);
+    }
     // Ingests what is queued, applies the pass in flight, publishes what is pending.
     worker.stop();
     const WorkerStatus ws = worker.status();
@@ -354,11 +402,14 @@ int main(int argc, char** argv) {
   }
   const double wall_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
   const double rss_run = peak_rss_mb();
+  std::fprintf(stderr, "fleet-bench: mapping stopped at %zu keyframes after %.0f s; reopening\n",
+               keyframes, wall_s);
 
   // Restart: reopen the final store as the aggregator does, to serving.
   const auto r0 = Clock::now();
   AggregatorCore reopened(o.store, store::OpenMode::kMustExist, mapper, {}, {}, core_options);
   const double restart_s = std::chrono::duration<double>(Clock::now() - r0).count();
+  std::fprintf(stderr, "fleet-bench: restart %.2f s\n", restart_s);
   // The recovered graph is the one the run ended with: every pose, frame and loop.
   const std::vector<mapping::KeyframePose> recovered = reopened.mapper().poses();
   bool restart_identical =
@@ -445,6 +496,11 @@ int main(int argc, char** argv) {
     windows[std::to_string(d) + "-" + std::to_string(std::min(10 * d, keyframes))] =
         window_ms(batches, d, std::min(10 * d, keyframes));
   }
+  // Every whole 10k window in order: [0, 10k), [10k, 20k), ...
+  Json windows_10k = Json::array();
+  for (std::size_t from = 0; from + 10000 <= keyframes; from += 10000) {
+    windows_10k.push_back(window_ms(batches, from, from + 10000));
+  }
   const Json summary = {
       {"vehicles", o.vehicles},
       {"local_hold_loops", o.local_hold_loops},
@@ -452,10 +508,15 @@ int main(int argc, char** argv) {
       {"verification_budget_per_keyframe", o.verification_budget},
       {"proximity_max_descriptor_distance", o.proximity_max_descriptor_distance},
       {"keyframes", keyframes},
+      {"target_keyframes", o.keyframes},
+      {"stopped_early", !stop_reason.empty()},
+      {"stop_reason", stop_reason},
+      {"max_wall_s", o.max_wall_s},
       {"distributions_per_keyframe", keyframes ? distributions_total / keyframes : 0},
       {"loops", loops},
       {"full_passes", full_passes},
       {"mapping_cpu_ms_per_keyframe", windows},
+      {"mapping_cpu_ms_per_keyframe_10k_windows", windows_10k},
       {"background_full_pass_cpu_ms_per_keyframe",
        keyframes ? 1000.0 * background_cpu_s / keyframes : 0.0},
       {"loop_latency_ms_p50", percentile(loop_latency_ms, 0.5)},
@@ -490,6 +551,7 @@ int main(int argc, char** argv) {
         {"pose_entries", sink.pose_entries},
         {"summaries", sink.summaries},
         {"tiles", sink.tiles}}},
+      {"feed_wall_s", feed_wall_s},
       {"wall_s", wall_s}};
   // NaN/Inf (an empty window) become null; the text is valid JSON either way.
   const std::string text = summary.dump(2) + "\n";

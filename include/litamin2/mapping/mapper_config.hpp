@@ -163,8 +163,8 @@ struct PoseGraphConfig {
   /// and no keyframes around it are, so the new loop corrects only its newer end's region. At
   /// a place the fleet has revisited many times that neighbourhood is held by the earlier
   /// loops, and freeing it brought every one of them (and their other ends) into the problem;
-  /// the full pass spreads the correction further. 0 = every older end is freed (as before).
-  int local_hold_loops = 0;
+  /// the full pass spreads the correction further. 0 = every older end is freed.
+  int local_hold_loops = 2;
   /// The full pass (Mapper::optimize_full, in the aggregator on a background thread) moves
   /// runs of this many consecutive keyframes of a stream as one rigid segment (1 = every
   /// keyframe its own node): its cost and memory are those of a graph this many times
