@@ -18,15 +18,6 @@ static_assert(
         kPlainScanCapacity,
     "kPlainScanCapacity is the IDL's array size");
 
-CloudError fail(CloudConversion& out, CloudError error, std::string message) {
-  out.error = error;
-  out.message = std::move(message);
-  out.cloud.points.clear();
-  out.cloud.intensities.clear();
-  out.cloud.times.clear();
-  return error;
-}
-
 }  // namespace
 
 CloudError from_plain_scan(const litamin2_zero_copy::msg::PlainScan& scan,
@@ -42,22 +33,22 @@ CloudError from_plain_scan(const litamin2_zero_copy::msg::PlainScan& scan,
   const std::uint32_t count = scan.point_count();
   out.total_points = count;
   if (scan.stamp().nanosec() >= 1'000'000'000u)
-    return fail(out, CloudError::kBadStamp,
-                "stamp nanosec " + std::to_string(scan.stamp().nanosec()) + " >= 1e9");
+    return out.reject(CloudError::kBadStamp,
+                      "stamp nanosec " + std::to_string(scan.stamp().nanosec()) + " >= 1e9");
   const auto& frame = scan.frame_id();
   if (std::memchr(frame.data(), '\0', frame.size()) == nullptr)
-    return fail(out, CloudError::kBadFrameId,
-                "frame_id has no NUL within its " + std::to_string(frame.size()) + " bytes");
+    return out.reject(CloudError::kBadFrameId,
+                      "frame_id has no NUL within its " + std::to_string(frame.size()) + " bytes");
   if (count > kPlainScanCapacity)
-    return fail(out, CloudError::kTooManyPoints,
-                "point_count " + std::to_string(count) + " > capacity " +
-                    std::to_string(kPlainScanCapacity));
+    return out.reject(CloudError::kTooManyPoints, "point_count " + std::to_string(count) +
+                                                      " > capacity " +
+                                                      std::to_string(kPlainScanCapacity));
   if (options.max_points > 0 && count > options.max_points)
-    return fail(out, CloudError::kTooManyPoints,
-                std::to_string(count) + " points > limit " + std::to_string(options.max_points));
+    return out.reject(CloudError::kTooManyPoints, std::to_string(count) + " points > limit " +
+                                                      std::to_string(options.max_points));
   if (scan.has_times() > 1)
-    return fail(out, CloudError::kBadTimeField,
-                "has_times is " + std::to_string(scan.has_times()) + " (0 or 1)");
+    return out.reject(CloudError::kBadTimeField,
+                      "has_times is " + std::to_string(scan.has_times()) + " (0 or 1)");
   const bool with_times = options.read_time && scan.has_times() == 1;
   if (with_times) out.time_field = "time";
   auto& points = out.cloud.points;
@@ -77,9 +68,9 @@ CloudError from_plain_scan(const litamin2_zero_copy::msg::PlainScan& scan,
     if (with_times) {
       const float t = p.time();
       if (!std::isfinite(t) || std::abs(static_cast<double>(t)) > kMaxPointTime)
-        return fail(out, CloudError::kBadTimeField,
-                    "point " + std::to_string(i) + " has time " + std::to_string(t) +
-                        " s (must be finite and within +-1 s of the stamp)");
+        return out.reject(CloudError::kBadTimeField,
+                          "point " + std::to_string(i) + " has time " + std::to_string(t) +
+                              " s (must be finite and within +-1 s of the stamp)");
       times[kept] = t;
     }
     points[kept++] = Eigen::Vector3f(x, y, z);

@@ -137,16 +137,16 @@ struct PointBytes {
   std::size_t size;
 };
 
-CloudError fail(CloudConversion& out, CloudError error, std::string message) {
-  out.error = error;
-  out.message = std::move(message);
-  out.cloud.points.clear();
-  out.cloud.intensities.clear();
-  out.cloud.times.clear();
-  return error;
-}
-
 }  // namespace
+
+CloudError CloudConversion::reject(CloudError why, std::string reason) {
+  error = why;
+  message = std::move(reason);
+  cloud.points.clear();
+  cloud.intensities.clear();
+  cloud.times.clear();
+  return why;
+}
 
 const char* to_string(CloudError error) {
   switch (error) {
@@ -197,8 +197,8 @@ CloudError find_fields(const sensor_msgs::msg::PointCloud2& msg, std::array<Fiel
       FieldSpec& spec = specs[k];
       if (field.name() != spec.name) continue;
       if (spec.found) {
-        return fail(out, CloudError::kDuplicateField,
-                    std::string("field '") + spec.name + "' appears more than once");
+        return out.reject(CloudError::kDuplicateField,
+                          std::string("field '") + spec.name + "' appears more than once");
       }
       spec.found = true;
       spec.offset = field.offset();
@@ -207,30 +207,30 @@ CloudError find_fields(const sensor_msgs::msg::PointCloud2& msg, std::array<Fiel
       const bool coordinate = k < 3;
       if (size == 0 ||
           (coordinate && field.datatype() != kFloat32 && field.datatype() != kFloat64)) {
-        return fail(out, CloudError::kBadFieldType,
-                    std::string("field '") + spec.name + "' has datatype " +
-                        std::to_string(field.datatype()) +
-                        (coordinate ? " (x, y, z must be FLOAT32 (7) or FLOAT64 (8))"
-                                    : " (not a PointField datatype 1..8)"));
+        return out.reject(CloudError::kBadFieldType,
+                          std::string("field '") + spec.name + "' has datatype " +
+                              std::to_string(field.datatype()) +
+                              (coordinate ? " (x, y, z must be FLOAT32 (7) or FLOAT64 (8))"
+                                          : " (not a PointField datatype 1..8)"));
       }
       if (field.count() == 0) {
-        return fail(out, CloudError::kBadFieldType,
-                    std::string("field '") + spec.name + "' has count 0");
+        return out.reject(CloudError::kBadFieldType,
+                          std::string("field '") + spec.name + "' has count 0");
       }
       const std::uint64_t end = static_cast<std::uint64_t>(field.offset()) +
                                 static_cast<std::uint64_t>(size) * field.count();
       if (end > point_step) {
-        return fail(out, CloudError::kFieldOutOfBounds,
-                    std::string("field '") + spec.name + "' (offset " +
-                        std::to_string(field.offset()) + ", " + std::to_string(size) + " x " +
-                        std::to_string(field.count()) + " bytes) does not fit in point_step " +
-                        std::to_string(point_step));
+        return out.reject(CloudError::kFieldOutOfBounds,
+                          std::string("field '") + spec.name + "' (offset " +
+                              std::to_string(field.offset()) + ", " + std::to_string(size) + " x " +
+                              std::to_string(field.count()) +
+                              " bytes) does not fit in point_step " + std::to_string(point_step));
       }
     }
   }
   for (std::size_t k = 0; k < 3; ++k) {
     if (!specs[k].found) {
-      return fail(out, CloudError::kMissingField, std::string("no field '") + specs[k].name + "'");
+      return out.reject(CloudError::kMissingField, std::string("no field '") + specs[k].name + "'");
     }
   }
   return CloudError::kNone;
@@ -246,21 +246,21 @@ CloudError check_extent(const sensor_msgs::msg::PointCloud2& msg, PointBytes byt
   const std::uint64_t row_step = msg.row_step();
   // Each factor is < 2^32, so these products cannot overflow 64 bits.
   if (row_step < width * point_step) {
-    return fail(out, CloudError::kBadRowStep,
-                "row_step " + std::to_string(row_step) + " < width " + std::to_string(width) +
-                    " * point_step " + std::to_string(point_step));
+    return out.reject(CloudError::kBadRowStep, "row_step " + std::to_string(row_step) +
+                                                   " < width " + std::to_string(width) +
+                                                   " * point_step " + std::to_string(point_step));
   }
   const std::uint64_t expected = row_step * height;
   if (static_cast<std::uint64_t>(bytes.size) != expected) {
-    return fail(out, CloudError::kDataSizeMismatch,
-                "data has " + std::to_string(bytes.size) + " bytes, row_step " +
-                    std::to_string(row_step) + " * height " + std::to_string(height) + " = " +
-                    std::to_string(expected));
+    return out.reject(CloudError::kDataSizeMismatch,
+                      "data has " + std::to_string(bytes.size) + " bytes, row_step " +
+                          std::to_string(row_step) + " * height " + std::to_string(height) + " = " +
+                          std::to_string(expected));
   }
   const std::uint64_t total = width * height;
   if (options.max_points > 0 && total > options.max_points) {
-    return fail(out, CloudError::kTooManyPoints,
-                std::to_string(total) + " points > limit " + std::to_string(options.max_points));
+    return out.reject(CloudError::kTooManyPoints, std::to_string(total) + " points > limit " +
+                                                      std::to_string(options.max_points));
   }
   return CloudError::kNone;
 }
@@ -275,24 +275,24 @@ CloudError find_time_field(const sensor_msgs::msg::PointCloud2& msg, FieldSpec& 
     for (const auto& field : msg.fields()) {
       if (field.name() != name) continue;
       const std::string who = std::string("time field '") + name + "'";
-      if (spec.found) return fail(out, CloudError::kBadTimeField, who + " appears more than once");
+      if (spec.found) return out.reject(CloudError::kBadTimeField, who + " appears more than once");
       spec.name = name;
       spec.found = true;
       spec.offset = field.offset();
       spec.datatype = field.datatype();
       const std::size_t size = datatype_size(field.datatype());
       if (size == 0)
-        return fail(out, CloudError::kBadTimeField,
-                    who + " has datatype " + std::to_string(field.datatype()) +
-                        " (not a PointField datatype 1..8)");
+        return out.reject(CloudError::kBadTimeField, who + " has datatype " +
+                                                         std::to_string(field.datatype()) +
+                                                         " (not a PointField datatype 1..8)");
       if (field.count() != 1)
-        return fail(out, CloudError::kBadTimeField,
-                    who + " has count " + std::to_string(field.count()) + " (expected 1)");
+        return out.reject(CloudError::kBadTimeField,
+                          who + " has count " + std::to_string(field.count()) + " (expected 1)");
       if (static_cast<std::uint64_t>(field.offset()) + size > point_step)
-        return fail(out, CloudError::kBadTimeField,
-                    who + " (offset " + std::to_string(field.offset()) + ", " +
-                        std::to_string(size) + " bytes) does not fit in point_step " +
-                        std::to_string(point_step));
+        return out.reject(CloudError::kBadTimeField,
+                          who + " (offset " + std::to_string(field.offset()) + ", " +
+                              std::to_string(size) + " bytes) does not fit in point_step " +
+                              std::to_string(point_step));
     }
     if (spec.found) return CloudError::kNone;
   }
@@ -311,8 +311,8 @@ CloudError convert_times(const sensor_msgs::msg::PointCloud2& msg, const FieldSp
   double lo = 0.0, hi = 0.0;
   for (std::size_t i = 0; i < raw.size(); ++i) {
     if (!std::isfinite(raw[i]))
-      return fail(out, CloudError::kBadTimeField,
-                  who + ": point " + std::to_string(i) + " has a non-finite time");
+      return out.reject(CloudError::kBadTimeField,
+                        who + ": point " + std::to_string(i) + " has a non-finite time");
     lo = i == 0 ? raw[i] : std::min(lo, raw[i]);
     hi = i == 0 ? raw[i] : std::max(hi, raw[i]);
   }
@@ -340,13 +340,13 @@ CloudError convert_times(const sensor_msgs::msg::PointCloud2& msg, const FieldSp
     }
   }
   times.clear();
-  return fail(out, CloudError::kBadTimeField,
-              who + ": times from " + std::to_string(lo) + " to " + std::to_string(hi) + " " +
-                  (is_float ? "s" : "ns") + " are neither relative (within 1 s of 0) nor" +
-                  (spec.datatype == kFloat64 ? " absolute within 1 s of the stamp "
-                                             : " (FLOAT64 only) absolute; stamp ") +
-                  std::to_string(msg.header().stamp().sec()) + "." +
-                  std::to_string(msg.header().stamp().nanosec()) + " s");
+  return out.reject(CloudError::kBadTimeField,
+                    who + ": times from " + std::to_string(lo) + " to " + std::to_string(hi) + " " +
+                        (is_float ? "s" : "ns") + " are neither relative (within 1 s of 0) nor" +
+                        (spec.datatype == kFloat64 ? " absolute within 1 s of the stamp "
+                                                   : " (FLOAT64 only) absolute; stamp ") +
+                        std::to_string(msg.header().stamp().sec()) + "." +
+                        std::to_string(msg.header().stamp().nanosec()) + " s");
 }
 
 /// The common case (native float32 x, y, z; intensity not wanted): written in place, with no
@@ -418,8 +418,8 @@ CloudError read_any_layout(const sensor_msgs::msg::PointCloud2& msg, PointBytes 
       if (with_intensity) {
         const float i = read_as_float(p + specs[3].offset, specs[3].datatype, swap);
         if (!std::isfinite(i))
-          return fail(
-              out, CloudError::kNonFiniteIntensity,
+          return out.reject(
+              CloudError::kNonFiniteIntensity,
               "point " + std::to_string(row * width + col) + " has intensity " + std::to_string(i));
         intensities.push_back(i);
       }
@@ -451,8 +451,8 @@ CloudError from_pointcloud2(const sensor_msgs::msg::PointCloud2& msg, const std:
   out.total_points = static_cast<std::size_t>(static_cast<std::uint64_t>(msg.width()) *
                                               static_cast<std::uint64_t>(msg.height()));
   if (msg.header().stamp().nanosec() >= 1'000'000'000u)
-    return fail(
-        out, CloudError::kBadStamp,
+    return out.reject(
+        CloudError::kBadStamp,
         "header stamp nanosec " + std::to_string(msg.header().stamp().nanosec()) + " >= 1e9");
   std::array<FieldSpec, 4> specs{{{"x"}, {"y"}, {"z"}, {"intensity"}}};
   if (find_fields(msg, specs, out) != CloudError::kNone) return out.error;

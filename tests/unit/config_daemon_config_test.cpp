@@ -217,9 +217,9 @@ streams:
 }
 
 TEST(DaemonConfig, ZeroCopyTopicIsOptInAndValidated) {
-  const DaemonConfig d =
-      parse("streams: [{id: a, zero_copy_topic: rt/a/plain_scan}, {id: b}]\ndiscovery: "
-            "{enabled: false}\n");
+  const DaemonConfig d = parse(
+      "streams: [{id: a, zero_copy_topic: rt/a/plain_scan}, {id: b}]\ndiscovery: "
+      "{enabled: false}\n");
   EXPECT_EQ(d.streams[0].zero_copy_topic, "rt/a/plain_scan");
   EXPECT_EQ(d.streams[0].topic, "rt/a/points");
   EXPECT_EQ(d.streams[1].zero_copy_topic, "");

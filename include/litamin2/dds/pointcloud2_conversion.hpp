@@ -86,6 +86,8 @@ struct CloudConversion {
   std::size_t total_points = 0;
 
   bool ok() const { return error == CloudError::kNone; }
+  /// Records a rejection: sets error and message and empties the cloud; returns error.
+  CloudError reject(CloudError why, std::string reason);
 };
 
 /// Converts and validates a PointCloud2:
