@@ -4,7 +4,7 @@
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config libfastrtps-dev fastddsgen fastdds-tools cyclonedds-dev cyclonedds-tools libsystemd-dev systemd iproute2 util-linux libeigen3-dev libtbb-dev libyaml-cpp-dev libspdlog-dev
       libcli11-dev libnanoflann-dev robin-map-dev libembree-dev libgtest-dev libgmock-dev
-      libbenchmark-dev libcairo2-dev libceres-dev libsqlite3-dev sqlite3 python3 file dpkg-dev
+      libbenchmark-dev libcairo2-dev libceres-dev libsqlite3-dev sqlite3 python3 python3-numpy python3-scipy file dpkg-dev
       libssl-dev openssl tcpdump liblzf-dev nlohmann-json3-dev libcpp-httplib-dev help2man curl)
 if [ "${1:-}" = --fuzz ]; then pkgs+=(clang libclang-rt-14-dev); fi
 missing=()
