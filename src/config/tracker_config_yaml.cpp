@@ -165,7 +165,7 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node, const TrackerConf
   recovery.read("trigger_ratio", rec.trigger_ratio);
   read_scales(recovery, rec.motion_scales);
   recovery.read("share_smoothing", rec.share_smoothing);
-  recovery.read("reset_ratio", rec.reset_ratio);
+  read_managed(recovery, "reset_ratio", rec.reset_ratio);
   YamlSection search(recovery.child("global_search"), "recovery.global_search");
   GlobalPoseSearchConfig& gs = rec.global_search;
   search.read("trigger_ratio", gs.trigger_ratio);

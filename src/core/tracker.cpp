@@ -56,6 +56,11 @@ Tracker::Tracker(const TrackerConfig& config)
 
 Tracker::~Tracker() = default;
 
+bool Tracker::below_fitting(double share) const {
+  const double ratio = config_.recovery.reset_ratio;
+  return ratio > 0.0 && fitting_share_ > 0.0 && share < ratio * fitting_share_;
+}
+
 bool Tracker::is_keyframe(const Eigen::Isometry3d& pose) const {
   const Eigen::Isometry3d motion = last_keyframe_.inverse() * pose;
   return motion.translation().norm() >= config_.keyframe.distance ||
@@ -131,13 +136,15 @@ FrameResult Tracker::process(const PointCloud& raw) {
   const PointCloud& scan = without_self_hits(raw, frame.self_hits);
   const Eigen::Isometry3d predicted = pose_ * velocity_;
   Eigen::Isometry3d estimate = predicted;
+  bool suspected_break = false;
   if (frames_ > 0 && !map_.empty() && search_) {
     ScanRegistration registration =
         register_scan(scan, voxelizer_, map_, *search_, predicted, config_.registration);
     double share = registration.result.valid ? inlier_share(registration) : 0.0;
     const RecoveryConfig& recovery = config_.recovery;
-    if (recovery.enabled && typical_share_ > 0.0 &&
-        share < recovery.trigger_ratio * typical_share_) {
+    const bool below_typical =
+        typical_share_ > 0.0 && share < recovery.trigger_ratio * typical_share_;
+    if (recovery.enabled && (below_typical || below_fitting(share))) {
       // Registration settles near its start: try the other starts and keep the best fit. The
       // voxeliser's grid voxels must be those of the kept registration (the map merges them).
       frame.retried = true;
@@ -186,33 +193,44 @@ FrameResult Tracker::process(const PointCloud& raw) {
       voxelizer_.voxelize(scan, registration.grid_pose);
     }
     frame.inlier_share = share;
-    if (frame.retried && recovery.reset_ratio > 0.0 &&
-        share < recovery.reset_ratio * typical_share_) {
-      // No start fits: a break in the input. Restart the map from this scan at the prediction;
-      // the typical share and the velocity are not updated from it.
-      frame.map_reset = true;
-      search_.reset();
-      map_ = VoxelMap(config_.voxelizer, config_.map);
-      source_ = voxelizer_.voxelize(scan, predicted);
-      frame.times.voxelize_ms = registration.voxelize_ms;
-      frame.times.register_ms = registration.register_ms;
-      frame.voxelizations = registration.voxelizations + 1;
-      frame.source_distributions = static_cast<int>(source_.size());
-      frame.keyframe = true;
-      const auto start = std::chrono::steady_clock::now();
-      map_.add_keyframe(voxelizer_.last_voxels(), predicted);
-      search_ = make_correspondence_search(config_.registration.correspondence, map_);
-      last_keyframe_ = predicted;
-      frame.times.map_update_ms = elapsed_ms(start);
-      pose_ = predicted;
-      frame.pose = predicted;
-      ++frames_;
-      return frame;
+    suspected_break = frame.retried && below_fitting(share);
+    if (suspected_break && break_map_) {
+      // The scan after a suspected break, which fits the old map no better: if it fits the map
+      // restarted from the suspected scan as frames usually fit, the break is confirmed and the
+      // old map, which may no longer be where it is drawn, is dropped.
+      ScanRegistration fresh = register_scan(scan, voxelizer_, *break_map_, *break_search_,
+                                             predicted, config_.registration);
+      const double fresh_share = fresh.result.valid ? inlier_share(fresh) : 0.0;
+      fresh.voxelize_ms += registration.voxelize_ms;
+      fresh.register_ms += registration.register_ms;
+      if (fresh_share >= recovery.trigger_ratio * fitting_share_) {
+        map_ = std::move(*break_map_);
+        search_ = make_correspondence_search(config_.registration.correspondence, map_);
+        registration = std::move(fresh);
+        share = fresh_share;
+        suspected_break = false;
+        frame.map_reset = true;
+        frame.inlier_share = share;
+      } else {
+        // The voxeliser holds the fresh try's grid voxels: re-cut the kept one's grid.
+        registration.voxelize_ms = fresh.voxelize_ms;
+        registration.register_ms = fresh.register_ms;
+        voxelizer_.voxelize(scan, registration.grid_pose);
+      }
     }
+    break_search_.reset();
+    break_map_.reset();
     if (registration.result.valid) {
       typical_share_ = typical_share_ < 0.0 ? share
                                             : (1.0 - recovery.share_smoothing) * typical_share_ +
                                                   recovery.share_smoothing * share;
+      // The fitting share, what the reset compares with, is what frames that fit as usual reach:
+      // a frame below the recovery's trigger (a break, or a map spoilt by one) does not pull it
+      // down, or a run of bad frames would soon look usual and no break would be seen.
+      if (fitting_share_ < 0.0 || share >= recovery.trigger_ratio * fitting_share_)
+        fitting_share_ = fitting_share_ < 0.0 ? share
+                                              : (1.0 - recovery.share_smoothing) * fitting_share_ +
+                                                    recovery.share_smoothing * share;
     }
     const RegistrationResult& result = registration.result;
     source_ = registration.source;
@@ -236,12 +254,21 @@ FrameResult Tracker::process(const PointCloud& raw) {
   frame.source_distributions = static_cast<int>(source_.size());
 
   // A frame that could not be registered also goes into the map, so that tracking can resume.
-  frame.keyframe = frames_ == 0 || !frame.registered || is_keyframe(estimate);
-  if (frame.keyframe) {
+  frame.keyframe = frames_ == 0 || !frame.registered || frame.map_reset || is_keyframe(estimate);
+  if (frame.keyframe || suspected_break) {
     const auto start = std::chrono::steady_clock::now();
-    map_.add_keyframe(voxelizer_.last_voxels(), estimate);
-    search_ = make_correspondence_search(config_.registration.correspondence, map_);
-    last_keyframe_ = estimate;
+    if (frame.keyframe) {
+      map_.add_keyframe(voxelizer_.last_voxels(), estimate);
+      search_ = make_correspondence_search(config_.registration.correspondence, map_);
+      last_keyframe_ = estimate;
+    }
+    if (suspected_break) {
+      // Kept as usual, and also the start of a map of its own, which the next scan is tried
+      // against if it fits the old map no better (RecoveryConfig::reset_ratio).
+      break_map_ = std::make_unique<VoxelMap>(config_.voxelizer, config_.map);
+      break_map_->add_keyframe(voxelizer_.last_voxels(), estimate);
+      break_search_ = make_correspondence_search(config_.registration.correspondence, *break_map_);
+    }
     frame.times.map_update_ms = elapsed_ms(start);
   }
 

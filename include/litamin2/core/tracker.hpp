@@ -58,8 +58,9 @@ struct FrameResult {
   /// them fitted better than the prediction's.
   bool retried = false;
   bool recovered = false;
-  /// No start fitted (RecoveryConfig::reset_ratio): the map was restarted from this scan at
-  /// the constant-velocity prediction (the pose); `registered` is false.
+  /// A break was confirmed (RecoveryConfig::reset_ratio): the previous scan fitted nothing, and
+  /// this one fits the map restarted from it, which replaced the map; this scan is registered
+  /// to it and added to it.
   bool map_reset = false;
   /// The global x/y/yaw search ran (RecoveryConfig::global_search); `pose_found` if a
   /// registration from one of its candidates was kept (the velocity is then not learnt from
@@ -120,9 +121,17 @@ class Tracker {
   /// Self-hit cells learnt (ScanFilterConfig, EgoFilterMode::kAuto), 0 before they are decided.
   std::size_t ego_cells() const { return ego_.cells(); }
   std::size_t frames() const { return frames_; }
+  /// The running inlier shares (RecoveryConfig), negative before the first registration: of
+  /// every registered frame (the recovery's trigger), and of the frames that fit as usual (the
+  /// reset's).
+  double typical_inlier_share() const { return typical_share_; }
+  double fitting_inlier_share() const { return fitting_share_; }
 
  private:
   bool is_keyframe(const Eigen::Isometry3d& pose) const;
+  /// `share` is below RecoveryConfig::reset_ratio of the fitting share (a break, when no
+  /// recovery start does better).
+  bool below_fitting(double share) const;
   /// The scan without its self-hits (the scan itself when there is nothing to drop).
   const PointCloud& without_self_hits(const PointCloud& scan, int& dropped);
   /// The scan's per-point times as deskew takes them (config.deskew.time_source), or null
@@ -143,6 +152,10 @@ class Tracker {
   Voxelizer voxelizer_;
   VoxelMap map_;
   std::unique_ptr<CorrespondenceSearch> search_;
+  /// After a frame that fitted below RecoveryConfig::reset_ratio of the fitting share: a map
+  /// restarted from that frame alone, and its search (null otherwise).
+  std::unique_ptr<VoxelMap> break_map_;
+  std::unique_ptr<CorrespondenceSearch> break_search_;
   std::vector<Distribution> source_;
   Eigen::Isometry3d pose_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d velocity_ = Eigen::Isometry3d::Identity();
@@ -155,6 +168,9 @@ class Tracker {
   std::size_t seed_skipped_ = 0;
   /// Running typical inlier share of registered frames (RecoveryConfig), negative before any.
   double typical_share_ = -1.0;
+  /// The same over the registered frames that fit as usual (at least
+  /// RecoveryConfig::trigger_ratio of it): what the reset compares with.
+  double fitting_share_ = -1.0;
   /// Deskew state (tracker_timing.cpp): the last stamp, the interval before it (seconds, 0
   /// before two frames), times from the azimuth, and the corrected scan.
   bool has_stamp_ = false;

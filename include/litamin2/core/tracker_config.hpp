@@ -39,16 +39,24 @@ struct RecoveryConfig {
   /// The other starts: the constant-velocity motion scaled by these factors (0: standing still,
   /// 2: one frame dropped).
   std::vector<double> motion_scales = {0.0, 0.5, 1.5, 2.0, 3.0};
-  /// Weight of a new frame in the running typical inlier share.
+  /// Weight of a new frame in the running inlier shares: the typical share (every registered
+  /// frame; the trigger above and the global search compare with it) and the fitting share
+  /// (only frames at or above trigger_ratio of it: a run of frames that fit badly, after a
+  /// break or on a map spoilt by one, does not lower it; reset_ratio compares with it).
   double share_smoothing = 0.1;
-  /// A scan whose best inlier share after the retries is still below this fraction of the
-  /// typical share is taken as a break in the input (consecutive files not related by any
-  /// motion the registration finds: many frames missing, a scene cut): the map is cleared and
-  /// restarted from this scan at the constant-velocity prediction, whose motion is not learnt
-  /// as the velocity. Otherwise the scan, registered to a wrong pose, is merged into the map,
-  /// and the scans after it are matched to a map holding the scene twice. 0 (default): off.
-  /// On the real VLP-16 drive consecutive files agree under no rigid motion on many frames
-  /// (docs/accuracy.md, "Breaks in the real VLP-16 drive").
+  /// A scan whose best inlier share after the retries and the global search is below this
+  /// fraction of the fitting share is a suspected break in the input (consecutive files not
+  /// related by any motion the registration finds: many frames missing, a scene cut). It is
+  /// kept as usual, and a second map is started from it alone. If the next scan also fits the
+  /// map below this fraction, it is registered to that second map too, and if it fits there
+  /// at least trigger_ratio of the fitting share, the break is confirmed: the old map, which
+  /// may no longer be where it is drawn, is dropped for the second one (FrameResult::
+  /// map_reset). A scan that fits badly for another reason (clutter, a view the map has not
+  /// seen) is followed by one that fits the old map, and nothing is dropped. Without it, a scan
+  /// registered to a wrong pose stays in the map, and the scans after it are matched to a map
+  /// holding the scene twice. 0: off (default); the vlp16 preset sets 0.5. On the real VLP-16
+  /// drive consecutive files agree under no rigid motion on many frames (docs/accuracy.md,
+  /// "Breaks in the real VLP-16 drive", "Breaks that cannot be registered").
   double reset_ratio = 0.0;
   /// A wider search after the retries (global_pose_search.hpp): a scan whose best share is still
   /// below global_search.trigger_ratio of the typical share is located by a correlative x/y/yaw
