@@ -68,6 +68,8 @@ void validate(const AggregatorConfig& config) {
     throw ConfigError("map_tiles.max_keyframes_per_turn: must be >= 1");
   if (!(config.map_tiles.publish_period_s >= 0.0 && config.map_tiles.publish_period_s <= 3600.0))
     throw ConfigError("map_tiles.publish_period_s: must be in [0, 3600] s");
+  if (!(config.map_tiles.persist_period_s >= 0.0 && config.map_tiles.persist_period_s <= 3600.0))
+    throw ConfigError("map_tiles.persist_period_s: must be in [0, 3600] s");
   if (config.publish.poses_chunk_keyframes < 0)
     throw ConfigError("publish.poses_chunk_keyframes: must be >= 0");
   const auto& levels = service::kLogLevels;

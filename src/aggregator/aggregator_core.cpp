@@ -204,7 +204,7 @@ std::size_t AggregatorCore::apply_full_pass(const mapping::FullPassProblem& prob
   return moved;
 }
 
-MapUpdate AggregatorCore::update_map(std::size_t max_keyframes) {
+MapUpdate AggregatorCore::update_map(std::size_t max_keyframes, bool persist) {
   MapUpdate out;
   double t = thread_cpu_seconds();
   out.keyframes = tiles_.update(mapper_.graph(), mapper_.cache(), max_keyframes);
@@ -212,9 +212,10 @@ MapUpdate AggregatorCore::update_map(std::size_t max_keyframes) {
   cpu_.map_fuse_s += now - t;
   t = now;
   // Read-only, the changed tiles stay in memory (the store's would be stale).
-  if (read_only_ || (tiles_.changed_tiles() == 0 && out.keyframes == 0)) return out;
+  if (read_only_) return out;
+  out.tiles = tiles_.updated_tiles();
+  if (!persist || (!tiles_.has_changes() && out.keyframes == 0)) return out;
   const mapping::TileMap::Changes changes = tiles_.take_changes();
-  for (const auto& tile : changes.tiles) out.tiles.push_back(tile->key());
   const mapping::KeyframeGraph& graph = mapper_.graph();
   std::vector<std::pair<KeyframeKey, std::optional<Eigen::Isometry3d>>> poses;
   poses.reserve(changes.nodes.size());

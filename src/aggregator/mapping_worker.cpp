@@ -84,7 +84,7 @@ void MappingWorker::run() {
   const double cpu = thread_cpu_seconds();
   if (!failed_) {
     // What is left to fuse stays marked in the store (the map poses): a restart goes on.
-    update_map();
+    update_map(true);
     report.full_pass = full_pass(true, &report);
   }
   publish(true, &report);
@@ -163,11 +163,14 @@ bool MappingWorker::full_pass(bool stopping, TurnReport* report) {
   return applied;
 }
 
-void MappingWorker::update_map() {
-  if (core_.map_pending() == 0) return;
+void MappingWorker::update_map(bool stopping) {
+  const auto now = Clock::now();
+  const bool persist = stopping || now >= next_map_persist_;
+  if (core_.map_pending() == 0 && !(persist && core_.map_unsaved())) return;
   MapUpdate u;
   const auto max = static_cast<std::size_t>(config_.map_tiles.max_keyframes_per_turn);
-  if (!guarded("storing the map tiles", [&] { u = core_.update_map(max); })) return;
+  if (!guarded("storing the map tiles", [&] { u = core_.update_map(max, persist); })) return;
+  if (persist) next_map_persist_ = now + seconds(config_.map_tiles.persist_period_s);
   dirty_tiles_.insert(u.tiles.begin(), u.tiles.end());
   if (!u.tiles.empty()) summary_dirty_ = true;
   std::lock_guard lock(mutex_);

@@ -85,6 +85,7 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
                      10'000'000);
     tiles.read_range("cache_mb", config.map_tiles.cache_mb, 1, 1'000'000);
     tiles.read_range("publish_period_s", config.map_tiles.publish_period_s, 0.0, 3600.0);
+    tiles.read_range("persist_period_s", config.map_tiles.persist_period_s, 0.0, 3600.0);
     tiles.reject_unknown();
   }
   {

@@ -216,6 +216,7 @@ std::size_t TileMap::update(const KeyframeGraph& graph, DistributionCache& cache
     e.bytes = e.tile->bytes();
     bytes_ += e.bytes;
   }
+  updated_.swap(touched_);
   touched_.clear();
   evict();
   return done;

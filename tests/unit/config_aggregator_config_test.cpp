@@ -74,6 +74,20 @@ TEST(AggregatorConfig, MapTilesPublishPeriod) {
   EXPECT_THROW(validate(c), ConfigError);
 }
 
+TEST(AggregatorConfig, MapTilesPersistPeriod) {
+  EXPECT_DOUBLE_EQ(aggregator_config_from_yaml(YAML::Node()).map_tiles.persist_period_s, 5.0);
+  EXPECT_DOUBLE_EQ(aggregator_config_from_yaml(YAML::Load("map_tiles: {persist_period_s: 0}"))
+                       .map_tiles.persist_period_s,
+                   0.0);
+  AggregatorConfig c;
+  c.map_tiles.persist_period_s = -1.0;
+  EXPECT_THROW(validate(c), ConfigError);
+  c.map_tiles.persist_period_s = 3601.0;
+  EXPECT_THROW(validate(c), ConfigError);
+  expect_error("map_tiles: {persist_period_s: 7200}",
+               "map_tiles.persist_period_s: 7200 is out of range");
+}
+
 TEST(AggregatorConfig, ErrorsNameTheKey) {
   expect_error("dds: {domain: 300}", "dds.domain: 300 is out of range");
   expect_error("dds: {profile: tcp}", "dds.profile: 'tcp' is not one of");

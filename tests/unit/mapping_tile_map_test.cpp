@@ -366,3 +366,25 @@ TEST(MappingTileMap, AMoveThresholdOfAVoxelOrMoreIsRejected) {
 
 // 0: keyframe by keyframe; 4: segments (the street drive has ~40 keyframes a stream).
 INSTANTIATE_TEST_SUITE_P(KeyframesAndSegments, MappingTileMapModes, ::testing::Values(0, 4));
+
+// A tile full of voxels (a 100 m tile of 3 m voxels, 8 high: 9,248) keeps an index of the
+// order of its voxels: the packed key's low bits are the x index alone, and an index that
+// hashed it as is (robin_map's power-of-two buckets) put each x column in one bucket run and
+// grew to 4 million buckets (64 MB, ~1000x slower lookups). Every voxel is found again.
+TEST(MappingTileMap, ADenseTileKeepsItsIndexSmall) {
+  MapTile tile(TileKey{0, 0});
+  std::vector<std::uint64_t> keys;
+  for (int x = 0; x < 34; ++x)
+    for (int y = 0; y < 34; ++y)
+      for (int z = -3; z < 5; ++z) keys.push_back(pack_voxel(VoxelIndex(x + 340, y - 500, z)));
+  VoxelMoments one;
+  one.count = 1;
+  for (std::uint64_t key : keys) ASSERT_TRUE(tile.apply(key, one, +1));
+  ASSERT_EQ(tile.voxels().size(), keys.size());
+  const std::size_t voxel_bytes = keys.size() * sizeof(MapTile::Voxel);
+  EXPECT_LT(tile.bytes(), 2 * voxel_bytes + voxel_bytes / 2) << "the index outgrew the voxels";
+  const MapTile restored = MapTile::restore(TileKey{0, 0}, 0, tile.voxels());
+  EXPECT_LT(restored.bytes(), 2 * voxel_bytes + voxel_bytes / 2);
+  for (std::uint64_t key : keys) ASSERT_TRUE(tile.apply(key, one, -1));
+  EXPECT_TRUE(tile.empty());
+}

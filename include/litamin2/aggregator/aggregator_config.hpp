@@ -110,6 +110,11 @@ struct MapTilesConfig {
   /// within the period go out together, once, with the newest revision (0: each change at
   /// once; at most 3600).
   double publish_period_s = 1.0;
+  /// The changed tiles and the poses their keyframes are fused at are stored at most once per
+  /// this many seconds (and at stop), in one transaction; in between they wait in memory, so
+  /// a tile changed in many turns is written once. A restart (kill -9 too) fuses again what
+  /// was fused after the last store (0: every turn; at most 3600).
+  double persist_period_s = 5.0;
 };
 
 /// Bounds on what a client may send (docs/security.md, "Validation").

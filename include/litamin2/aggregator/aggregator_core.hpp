@@ -18,8 +18,8 @@
 /// The global map is kept in tiles (mapping/tile_map.hpp): ingest and full passes mark the
 /// keyframes that arrived or moved, update_map() fuses a bounded number of them into the tiles
 /// and commits the changed tiles with the poses their keyframes are fused at (one
-/// transaction), so that a restart recovers the tiles and what is still to be fused into them
-/// from the tables too.
+/// transaction; the mapping thread does so at most every map_tiles.persist_period_s), so that
+/// a restart recovers the tiles and what is still to be fused into them from the tables too.
 ///
 /// Not thread-safe: one owner (the mapping thread; export runs it on its own).
 
@@ -91,7 +91,7 @@ struct CoreOptions {
 struct MapUpdate {
   /// Keyframes fused into or subtracted from the tiles.
   std::size_t keyframes = 0;
-  /// Tiles changed (stored, and to publish).
+  /// Tiles this call changed (to publish; stored now or at a later update_map with persist).
   std::vector<mapping::TileKey> tiles;
 };
 
@@ -120,9 +120,14 @@ class AggregatorCore {
   std::size_t apply_full_pass(const mapping::FullPassProblem& problem);
 
   /// Fuses at most `max_keyframes` of the keyframes that arrived or moved into the map tiles
-  /// (0: all), then stores the changed tiles and map poses in one transaction (not when open
-  /// read-only: the tiles then change in memory only).
-  MapUpdate update_map(std::size_t max_keyframes);
+  /// (0: all), then, when `persist`, stores the tiles changed since the last store and the
+  /// poses their keyframes are fused at in one transaction (not when open read-only: the
+  /// tiles then change in memory only). Without `persist` the changes wait in memory (changed
+  /// tiles are not evicted) for a later call with it: the store keeps the tiles and map poses
+  /// of the last one, consistent with each other, and a restart fuses the rest again.
+  MapUpdate update_map(std::size_t max_keyframes, bool persist = true);
+  /// Whether changed tiles or fused poses wait to be stored (update_map without persist).
+  bool map_unsaved() const { return tiles_.has_changes(); }
   /// Keyframes still to be fused (or moved) in the tiles.
   std::size_t map_pending() const { return tiles_.pending(); }
   const mapping::TileMap& tiles() const { return tiles_; }

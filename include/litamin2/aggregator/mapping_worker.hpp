@@ -3,7 +3,8 @@
 /// and ingests it (store commit, then mapper); publishes the corrected poses (when the poses
 /// period allows) before any map work, so that a loop's correction does not wait behind the
 /// tiles; fuses at most map_tiles.max_keyframes_per_turn
-/// of the keyframes that arrived or moved into the map tiles (and commits them); applies a
+/// of the keyframes that arrived or moved into the map tiles (and commits them, at most every
+/// map_tiles.persist_period_s and at stop); applies a
 /// solved background full pass and starts the next when due; publishes, each at most at its
 /// period, the corrected poses of the pose chunks holding a keyframe that was added or moved,
 /// the tiles that changed and the map summary (from the tile index). Every step costs what
@@ -119,7 +120,9 @@ class MappingWorker {
  private:
   void run();
   void process(std::vector<Keyframe>& batch, TurnReport& report);
-  void update_map();
+  /// Fuses into the tiles; stores them when map_tiles.persist_period_s has passed, or when
+  /// `stopping`.
+  void update_map(bool stopping = false);
   /// Publishes what is due; `force`: all that is pending, now.
   void publish(bool force, TurnReport* report);
   void publish_poses(TurnReport* report);
@@ -156,6 +159,7 @@ class MappingWorker {
   Clock::time_point next_poses_{};
   Clock::time_point next_summary_{};
   Clock::time_point next_tiles_{};
+  Clock::time_point next_map_persist_{};
 
   FullPassWorker full_pass_worker_;
   Clock::time_point last_full_pass_end_ = Clock::now();

@@ -12,6 +12,7 @@
 /// voxel's centre), and come out ordered by voxel key whatever the order of fusion.
 
 #include "litamin2/core/distribution.hpp"
+#include "litamin2/core/voxel_key.hpp"
 #include "litamin2/core/voxel_moments.hpp"
 #include "litamin2/core/voxelizer.hpp"
 
@@ -96,7 +97,11 @@ class MapTile {
   TileKey key_;
   std::int64_t keyframes_ = 0;
   std::vector<Voxel> voxels_;
-  tsl::robin_map<std::uint64_t, std::uint32_t> index_;
+  /// Voxel key -> position in voxels_. Hashed with VoxelKeyHash: the packed key's low bits
+  /// are the x index alone, and the power-of-two buckets of robin_map keep only low bits, so
+  /// with the identity hash a tile's voxels of one x fall into one bucket run (a 100 m tile of
+  /// 3 m voxels: ~34 runs; lookups ~1000x slower and the buckets grown to millions).
+  tsl::robin_map<std::uint64_t, std::uint32_t, VoxelKeyHash> index_;
 };
 
 /// The moments of a keyframe's distributions moved to the map frame by `pose`, each with its

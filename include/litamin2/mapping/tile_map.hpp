@@ -134,6 +134,10 @@ class TileMap {
   Changes take_changes();
   /// Tiles changed since the last take_changes().
   std::size_t changed_tiles() const { return dirty_.size(); }
+  /// Whether take_changes() has anything to give (changed tiles or fused poses).
+  bool has_changes() const { return !dirty_.empty() || !changed_nodes_.empty(); }
+  /// The tiles the latest update() changed (ascending), whether or not taken since.
+  const std::vector<TileKey>& updated_tiles() const { return updated_; }
 
   /// A tile's contents (from memory or the loader); null if the map has no such tile. Valid
   /// until the next update().
@@ -229,6 +233,7 @@ class TileMap {
   std::set<TileKey> dirty_;
   /// Tiles touched by the update in progress (their summaries are refreshed at its end).
   std::vector<TileKey> touched_;
+  std::vector<TileKey> updated_;
   std::vector<std::uint32_t> changed_nodes_;
   std::vector<bool> node_changed_;
   std::size_t bytes_ = 0;
