@@ -2,10 +2,12 @@
 """Frame-to-frame agreement of an estimated path with the ground truth (KITTI 3x4 rows, one
 per frame, same frames and frame convention, e.g. DIR/poses_kitti_cam.txt and SEQ/poses.txt).
 
-usage: frame_steps.py EST GT [--json]
+usage: frame_steps.py EST GT [--json] [--breaks-over M]
 prints: p50/p95/max translation error (m) and rotation error (deg) of the relative motions
 inv(P_i) P_{i+1}, the largest step of EST and of GT (m), and the frames whose translation
-error exceeds 1 m ("jumps"). Rotation angles come from the skew part of the rotation
+error exceeds 1 m ("jumps"). --breaks-over M leaves out the steps whose ground-truth motion is
+longer than M metres (breaks in the input that no scan can tell, e.g. litamin2-sim
+--drop-bursts with long bursts) and counts them as "breaks". Rotation angles come from the skew part of the rotation
 (atan2), so the ground truth's non-orthonormal rows (KITTI's are orthonormal only to ~1e-6)
 do not add a ~0.1 deg floor as acos(trace) does. Plain Python, no numpy.
 """
@@ -48,16 +50,30 @@ def q(v, f):
 
 
 def main():
-    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    argv = sys.argv[1:]
+    breaks_over = None
+    if "--breaks-over" in argv:
+        k = argv.index("--breaks-over")
+        try:
+            breaks_over = float(argv[k + 1])
+        except (IndexError, ValueError):
+            sys.exit("--breaks-over needs a length in metres")
+        if not breaks_over > 0.0:
+            sys.exit("--breaks-over needs a length above 0")
+        del argv[k:k + 2]
+    args = [a for a in argv if not a.startswith("--")]
     if len(args) != 2:
         sys.exit(__doc__)
     est, gt = load(args[0]), load(args[1])
     if len(est) != len(gt):
         sys.exit(f"{len(est)} estimated poses but {len(gt)} ground-truth poses")
-    dt, dr, est_steps, gt_steps, jumps = [], [], [], [], []
+    dt, dr, est_steps, gt_steps, jumps, breaks = [], [], [], [], [], 0
     for i in range(len(est) - 1):
         a = mul(inv(est[i]), est[i + 1])
         b = mul(inv(gt[i]), gt[i + 1])
+        if breaks_over is not None and norm_t(b) > breaks_over:
+            breaks += 1
+            continue
         e = mul(inv(a), b)
         dt.append(norm_t(e))
         dr.append(angle_deg(e))
@@ -73,6 +89,8 @@ def main():
         "jumps_over_1m": len(jumps),
         "first_jumps": jumps[:10],
     }
+    if breaks_over is not None:
+        out["breaks_left_out"] = breaks
     if "--json" in sys.argv:
         print(json.dumps(out, indent=1))
     else:
