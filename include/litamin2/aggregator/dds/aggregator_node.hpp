@@ -29,6 +29,7 @@
 #include "litamin2/msg/MapPatchPubSubTypes.h"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 
+#include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
 #include <chrono>
@@ -81,6 +82,8 @@ class AggregatorNode {
     MapCloud cloud;
     bool changed = false;
   };
+  /// An output writer's QoS with the hot standby's ownership (standby.strength; SHARED at 0).
+  eprosima::fastdds::dds::DataWriterQos output_qos(eprosima::fastdds::dds::DataWriterQos qos) const;
   void publish_status(Clock::time_point now);
   /// The listener's and the queue's counters, as the status reports them.
   IngestCounters ingest_counters() const;
