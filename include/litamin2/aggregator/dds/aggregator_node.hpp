@@ -10,8 +10,10 @@
 /// in between. For every stream seen in the patches (or recovered from the store), a reader of
 /// its odometry (reliable, keep-last, as litamin2d writes it) and a writer of its current pose
 /// in the map frame (map_odometry.hpp), created by the main loop; a MapOdometryRelay between
-/// them. The store is opened (and the mapper rebuilt from it) before DDS starts, so a
-/// store that cannot be opened fails the start with nothing published.
+/// them. With standby.strength > 0 the map outputs (poses, summary, tiles, cloud, map-frame
+/// odometry) are EXCLUSIVE at that strength: the hot standby of two aggregators on the same
+/// patches (docs/deploy.md, "Hot standby"). The store is opened (and the mapper rebuilt from it)
+/// before DDS starts, so a store that cannot be opened fails the start with nothing published.
 
 #include "litamin2/aggregator/aggregator_config.hpp"
 #include "litamin2/aggregator/aggregator_core.hpp"
