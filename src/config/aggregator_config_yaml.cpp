@@ -95,6 +95,12 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
     full_pass.read("on_stop", config.full_pass.on_stop);
     full_pass.reject_unknown();
   }
+  {
+    YamlSection standby(root.child("standby"), "standby");
+    // DDS's strength is unsigned 32 bit; the limit keeps it an int here.
+    standby.read_range("strength", config.standby.strength, 0, 1'000'000);
+    standby.reject_unknown();
+  }
   config.watchdog =
       service::watchdog_config_from_yaml(root.child("watchdog"), 86400.0, config.watchdog);
   config.metrics = service::metrics_config_from_yaml(root.child("metrics"));

@@ -129,7 +129,17 @@ fdds::DataWriterQos exclusive_odom_writer_qos(std::uint32_t strength, std::int32
 }
 
 fdds::DataReaderQos exclusive_odom_reader_qos(std::int32_t depth) {
-  fdds::DataReaderQos qos = odom_reader_qos(depth);
+  return exclusive_ownership(odom_reader_qos(depth));
+}
+
+fdds::DataWriterQos with_ownership_strength(fdds::DataWriterQos qos, std::uint32_t strength) {
+  if (strength == 0) return qos;
+  qos.ownership().kind = fdds::EXCLUSIVE_OWNERSHIP_QOS;
+  qos.ownership_strength().value = strength;
+  return qos;
+}
+
+fdds::DataReaderQos exclusive_ownership(fdds::DataReaderQos qos) {
   qos.ownership().kind = fdds::EXCLUSIVE_OWNERSHIP_QOS;
   return qos;
 }

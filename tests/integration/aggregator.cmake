@@ -11,6 +11,9 @@
 #    finishes as at the end and writes a valid summary marked stopped_early.
 #  - integration_map_tiles: the map tiles on rt/litamin2/map_tiles and litamin2-map-tiles
 #    (content-filtered box, early and late-joining clients, revisions across a restart).
+#  - integration_aggregator_standby: two aggregators in hot standby (standby.strength 2 and 1)
+#    on the same patches, the stronger killed with SIGKILL mid-ingest: an exclusive reader of the
+#    poses switches to the other within the lease; the two maps compared.
 #  - integration_aggregator_errors: corrupt store (aggregator and export exit non-zero naming
 #    the file, bytes unchanged), bad configurations, --help/--version/--check-config.
 if(TARGET litamin2-aggregator)
@@ -49,5 +52,9 @@ if(TARGET litamin2-aggregator)
       COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/aggregator_restart.sh ${CMAKE_BINARY_DIR}
         ${CMAKE_CURRENT_BINARY_DIR}/aggregator_restart ${CMAKE_SOURCE_DIR})
     set_tests_properties(integration_aggregator_restart PROPERTIES TIMEOUT 600 RUN_SERIAL TRUE)
+    add_test(NAME integration_aggregator_standby
+      COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/aggregator_standby.sh ${CMAKE_BINARY_DIR}
+        ${CMAKE_CURRENT_BINARY_DIR}/aggregator_standby)
+    set_tests_properties(integration_aggregator_standby PROPERTIES TIMEOUT 600 RUN_SERIAL TRUE)
   endif()
 endif()

@@ -116,6 +116,16 @@ TEST(AggregatorConfig, ErrorsNameTheKey) {
   expect_error("colour: red", "colour: unknown key");
 }
 
+TEST(AggregatorConfig, StandbyStrength) {
+  // 0 (the default): SHARED output writers, as without standby.
+  EXPECT_EQ(aggregator_config_from_yaml(YAML::Node()).standby.strength, 0);
+  EXPECT_EQ(aggregator_config_from_yaml(YAML::Load("standby: {strength: 2}")).standby.strength, 2);
+  expect_error("standby: {strength: -1}", "standby.strength: -1 is out of range");
+  expect_error("standby: {strength: 2000000}", "standby.strength: 2000000 is out of range");
+  expect_error("standby: {strength: high}", "standby.strength: cannot read 'high'");
+  expect_error("standby: {replicas: 2}", "standby.replicas: unknown key");
+}
+
 TEST(AggregatorConfig, LimitsAndSecurity) {
   EXPECT_EQ(aggregator_config_from_yaml(YAML::Node()).limits.max_distributions_per_patch, 200'000);
   EXPECT_EQ(aggregator_config_from_yaml(YAML::Load("limits: {max_distributions_per_patch: 7}"))

@@ -146,6 +146,7 @@ TEST(ConfigShippedDefaults, AggregatorDdsOnlyConfigBehavesAsTheShippedFile) {
   EXPECT_EQ(shipped.full_pass.max_duty, minimal.full_pass.max_duty);
   EXPECT_EQ(shipped.full_pass.min_interval_s, minimal.full_pass.min_interval_s);
   EXPECT_EQ(shipped.full_pass.on_stop, minimal.full_pass.on_stop);
+  EXPECT_EQ(shipped.standby.strength, minimal.standby.strength);
   expect_same_watchdog(shipped.watchdog, minimal.watchdog);
   EXPECT_EQ(shipped.log_level, minimal.log_level);
 }

@@ -137,6 +137,11 @@ int main(int argc, char** argv) {
                  "operator's)");
   app.add_option("--identity", identity, "DDS-Security: the identity in --pki to read as");
   app.add_flag("--verbose,-v", verbose, "Log each tile received");
+  bool exclusive = false;
+  app.add_flag("--exclusive", exclusive,
+               "Read with EXCLUSIVE ownership: the tiles of the strongest live aggregator when "
+               "two run as hot standby (standby.strength > 0 on both; a SHARED reader gets "
+               "none of theirs)");
   tools::init_cli(app, "litamin2-map-tiles");
   if (const auto status = tools::parse_cli(app, argc, argv)) return *status;
   const std::string prog = app.get_name();
@@ -174,9 +179,11 @@ int main(int argc, char** argv) {
   litamin2::dds::TileConversionOptions options;
   options.max_distributions = max_distributions;
   map_tiles::TileCollector collector(options);
-  fdds::DataReader* reader =
-      subscriber->create_datareader(filtered, litamin2::dds::map_tiles_reader_qos(), &collector,
-                                    fdds::StatusMask::data_available());
+  fdds::DataReader* reader = subscriber->create_datareader(
+      filtered,
+      exclusive ? litamin2::dds::exclusive_ownership(litamin2::dds::map_tiles_reader_qos())
+                : litamin2::dds::map_tiles_reader_qos(),
+      &collector, fdds::StatusMask::data_available());
   if (!reader) return tools::runtime_error(prog, "cannot create the reader of " + topic);
 
   std::signal(SIGINT, on_signal);

@@ -131,6 +131,19 @@ struct LimitsConfig {
   bool fixed_patch_payloads = false;
 };
 
+/// Hot standby of the aggregator itself: two aggregators on the same (durable) map patches, each
+/// with its own store, publish the same outputs; with a strength > 0 their output writers are
+/// EXCLUSIVE, so an exclusive reader takes the strongest live aggregator's samples only and
+/// switches to the next one when that one's participant is dropped (its lease).
+struct StandbyConfig {
+  /// Ownership strength of the output writers (keyframe poses, map summary, map tiles, map
+  /// cloud, map-frame odometry). 0: SHARED ownership, as without standby (every reader gets
+  /// every aggregator's samples). > 0: EXCLUSIVE at this strength; give each aggregator a
+  /// different one (the highest is the owner). Status, diagnostics and rt/tf stay SHARED (see
+  /// docs/deploy.md, "Hot standby").
+  int strength = 0;
+};
+
 struct AggregatorConfig {
   service::TransportConfig dds;
   /// DDS-Security (off by default).
@@ -144,6 +157,7 @@ struct AggregatorConfig {
   MapTilesConfig map_tiles;
   /// The background full pass of the pose graph (full_pass_worker.hpp).
   FullPassConfig full_pass;
+  StandbyConfig standby;
   /// A batch may take longer than a frame: 60 s stall timeout (the shipped file's), not 10.
   service::WatchdogConfig watchdog{true, 60.0};
   /// The Prometheus endpoint (off unless metrics.listen is set).

@@ -57,6 +57,14 @@ eprosima::fastdds::dds::DataWriterQos exclusive_odom_writer_qos(std::uint32_t st
                                                                 std::int32_t depth = 100);
 /// odom_reader_qos with EXCLUSIVE ownership (matches only exclusive writers).
 eprosima::fastdds::dds::DataReaderQos exclusive_odom_reader_qos(std::int32_t depth = 100);
+/// Any writer QoS made a hot-standby one: EXCLUSIVE ownership at `strength`, or unchanged
+/// (SHARED) when `strength` is 0, so that a standby setting of 0 keeps today's behaviour.
+eprosima::fastdds::dds::DataWriterQos with_ownership_strength(
+    eprosima::fastdds::dds::DataWriterQos qos, std::uint32_t strength);
+/// Any reader QoS made EXCLUSIVE: it takes the strongest live writer's samples of each instance
+/// (and matches only exclusive writers).
+eprosima::fastdds::dds::DataReaderQos exclusive_ownership(
+    eprosima::fastdds::dds::DataReaderQos qos);
 /// rt/litamin2/map_patches: reliable, transient-local, keep-all per stream instance, any number
 /// of streams. The writer holds the latest `history_per_stream` patches of each stream for late
 /// readers (an aggregator starting or restarting); when a stream's history is full, writing

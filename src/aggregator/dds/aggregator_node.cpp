@@ -143,10 +143,15 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
     return t;
   };
   fdds::Topic* patches = topic(config_.topics.map_patches, patch_type_);
+  // standby.strength > 0: the map outputs are EXCLUSIVE, so that an exclusive reader takes one
+  // aggregator's (the strongest live one's) when two run on the same patches. Status and
+  // diagnostics stay SHARED (each aggregator reports itself), and so does rt/tf: it is one
+  // unkeyed topic that the daemons' odom -> base_link transforms share, so an exclusive rt/tf
+  // would hide either those or the standby's map -> odom from every reader.
   fdds::DataWriter* poses_writer = publisher_->create_datawriter(
-      topic(config_.topics.keyframe_poses, poses_type_), latest_per_instance_qos());
+      topic(config_.topics.keyframe_poses, poses_type_), output_qos(latest_per_instance_qos()));
   fdds::DataWriter* summary_writer = publisher_->create_datawriter(
-      topic(config_.topics.map_summary, summary_type_), latest_per_instance_qos());
+      topic(config_.topics.map_summary, summary_type_), output_qos(latest_per_instance_qos()));
   status_writer_ = publisher_->create_datawriter(topic(config_.topics.status, status_type_),
                                                  dds::status_writer_qos());
   if (!poses_writer || !summary_writer || !status_writer_)
@@ -168,7 +173,7 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
         dds::register_type(participant_.get(), new sensor_msgs::msg::PointCloud2PubSubType());
     // Transient-local, latest only: a viewer that starts later gets the current map.
     cloud_writer_ = publisher_->create_datawriter(topic(config_.topics.map_cloud, cloud_type_),
-                                                  dds::tf_static_writer_qos());
+                                                  output_qos(dds::tf_static_writer_qos()));
     if (!cloud_writer_)
       throw std::runtime_error("cannot create the writer of " + config_.topics.map_cloud);
     cloud_ = std::make_unique<MapCloudBuffer>();
@@ -178,7 +183,7 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
     spdlog::warn("cannot register the tile box filter: map tile readers filter themselves");
   tile_type_ = dds::register_type(participant_.get(), new litamin2::msg::MapTilePubSubType());
   fdds::DataWriter* tile_writer = publisher_->create_datawriter(
-      topic(config_.topics.map_tiles, tile_type_), dds::map_tiles_writer_qos());
+      topic(config_.topics.map_tiles, tile_type_), output_qos(dds::map_tiles_writer_qos()));
   if (!tile_writer)
     throw std::runtime_error("cannot create the writer of " + config_.topics.map_tiles);
   // Revisions start at the wall clock's microseconds: above the previous run's.
@@ -203,6 +208,16 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
       config_.dds.domain, service::to_string(config_.dds.domain_source),
       service::to_string(config_.dds.profile), config_.topics.map_patches,
       config_.topics.keyframe_poses, config_.topics.map_summary, config_.topics.map_tiles);
+  if (config_.standby.strength > 0)
+    spdlog::info(
+        "hot standby: map outputs EXCLUSIVE at strength {} (exclusive readers take the "
+        "strongest live aggregator's)",
+        config_.standby.strength);
+}
+
+fdds::DataWriterQos AggregatorNode::output_qos(fdds::DataWriterQos qos) const {
+  return dds::with_ownership_strength(std::move(qos),
+                                      static_cast<std::uint32_t>(config_.standby.strength));
 }
 
 AggregatorNode::~AggregatorNode() {
@@ -225,7 +240,7 @@ void AggregatorNode::subscribe_odometry(const WorkerStatus& status) {
     fdds::Topic* out_t = participant_->create_topic(out_topic, odometry_type_.get_type_name(),
                                                     fdds::TOPIC_QOS_DEFAULT);
     fdds::DataWriter* writer =
-        out_t ? publisher_->create_datawriter(out_t, dds::odom_writer_qos()) : nullptr;
+        out_t ? publisher_->create_datawriter(out_t, output_qos(dds::odom_writer_qos())) : nullptr;
     if (!in_t || !writer) {
       spdlog::warn("stream {}: cannot create {} / {}: no map-frame odometry", stream, in_topic,
                    out_topic);

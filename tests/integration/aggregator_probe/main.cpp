@@ -10,7 +10,9 @@
 //    50 m around it, so that places differ as real ones do.
 //    The writer is reliable, transient-local, keep-all, and stays up --linger seconds.
 //  poses: reads rt/litamin2/keyframe_poses until every --stream has --expect keyframes (exit 0)
-//    or --timeout passes (exit 1); prints each stream's count and frame.
+//    or --timeout passes (exit 1); prints each stream's count and frame. --exclusive reads with
+//    EXCLUSIVE ownership (aggregators in hot standby); --log FILE writes one line per sample
+//    received: wall-clock ns, stream, keyframes, and the writer's GUID (which aggregator).
 
 #include "litamin2/core/tracker.hpp"
 #include "litamin2/dds/map_patch_conversion.hpp"
@@ -60,8 +62,20 @@ class MatchListener : public fdds::DataWriterListener {
   std::atomic<int> matched{0};
 };
 
+/// A writer's GUID (its publication handle) in hex: which aggregator a sample came from.
+std::string writer_guid(const fdds::InstanceHandle_t& handle) {
+  std::string out;
+  char byte[3];
+  for (int i = 0; i < 16; ++i) {
+    std::snprintf(byte, sizeof byte, "%02x", handle.value[i]);
+    out += byte;
+  }
+  return out;
+}
+
 class PosesListener : public fdds::DataReaderListener {
  public:
+  explicit PosesListener(std::FILE* log) : log_(log) {}
   void on_data_available(fdds::DataReader* reader) override {
     litamin2::msg::KeyframePoses msg;
     fdds::SampleInfo info;
@@ -69,10 +83,21 @@ class PosesListener : public fdds::DataReaderListener {
       if (!info.valid_data) continue;
       std::lock_guard lock(mutex);
       latest[msg.stream_id()] = {msg.keyframes().size(), msg.frame_id()};
+      if (log_) {
+        const auto now = std::chrono::duration_cast<std::chrono::nanoseconds>(
+            std::chrono::system_clock::now().time_since_epoch());
+        std::fprintf(log_, "%lld %s %zu %s\n", static_cast<long long>(now.count()),
+                     msg.stream_id().c_str(), msg.keyframes().size(),
+                     writer_guid(info.publication_handle).c_str());
+        std::fflush(log_);
+      }
     }
   }
   std::mutex mutex;
   std::map<std::string, std::pair<std::size_t, std::string>> latest;
+
+ private:
+  std::FILE* log_;
 };
 
 std::vector<Keyframe> track(const std::string& folder, std::size_t frames) {
@@ -199,6 +224,10 @@ int main(int argc, char** argv) {
   poses->add_option("--stream", pose_streams)->required();
   poses->add_option("--expect", expect, "keyframes expected per stream")->required();
   poses->add_option("--timeout", timeout_s);
+  bool exclusive = false;
+  std::string sample_log;
+  poses->add_flag("--exclusive", exclusive, "EXCLUSIVE ownership (aggregators in hot standby)");
+  poses->add_option("--log", sample_log, "one line per sample: wall ns, stream, keyframes, writer");
   CLI11_PARSE(app, argc, argv);
 
   litamin2::dds::ParticipantPtr participant =
@@ -213,7 +242,13 @@ int main(int argc, char** argv) {
     fdds::DataReaderQos qos = litamin2::dds::map_patches_reader_qos();
     qos.history().kind = fdds::KEEP_LAST_HISTORY_QOS;
     qos.history().depth = 1;
-    PosesListener listener;
+    if (exclusive) qos = litamin2::dds::exclusive_ownership(qos);
+    std::FILE* log = sample_log.empty() ? nullptr : std::fopen(sample_log.c_str(), "w");
+    if (!sample_log.empty() && !log) {
+      std::fprintf(stderr, "probe: cannot write %s\n", sample_log.c_str());
+      return 1;
+    }
+    PosesListener listener(log);
     auto* subscriber = participant->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
     subscriber->create_datareader(topic, qos, &listener);
     const auto deadline = Clock::now() + std::chrono::duration<double>(timeout_s);
@@ -232,6 +267,7 @@ int main(int argc, char** argv) {
         std::printf("poses %s: %zu keyframes in %s\n", s.c_str(), v.first, v.second.c_str());
     }
     participant.reset();
+    if (log) std::fclose(log);
     if (!done) std::fprintf(stderr, "probe: timed out waiting for %zu keyframes\n", expect);
     return done ? 0 : 1;
   }

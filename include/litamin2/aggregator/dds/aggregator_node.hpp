@@ -10,8 +10,10 @@
 /// in between. For every stream seen in the patches (or recovered from the store), a reader of
 /// its odometry (reliable, keep-last, as litamin2d writes it) and a writer of its current pose
 /// in the map frame (map_odometry.hpp), created by the main loop; a MapOdometryRelay between
-/// them. The store is opened (and the mapper rebuilt from it) before DDS starts, so a
-/// store that cannot be opened fails the start with nothing published.
+/// them. With standby.strength > 0 the map outputs (poses, summary, tiles, cloud, map-frame
+/// odometry) are EXCLUSIVE at that strength: the hot standby of two aggregators on the same
+/// patches (docs/deploy.md, "Hot standby"). The store is opened (and the mapper rebuilt from it)
+/// before DDS starts, so a store that cannot be opened fails the start with nothing published.
 
 #include "litamin2/aggregator/aggregator_config.hpp"
 #include "litamin2/aggregator/aggregator_core.hpp"
@@ -29,6 +31,7 @@
 #include "litamin2/msg/MapPatchPubSubTypes.h"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 
+#include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
 #include <chrono>
@@ -81,6 +84,8 @@ class AggregatorNode {
     MapCloud cloud;
     bool changed = false;
   };
+  /// An output writer's QoS with the hot standby's ownership (standby.strength; SHARED at 0).
+  eprosima::fastdds::dds::DataWriterQos output_qos(eprosima::fastdds::dds::DataWriterQos qos) const;
   void publish_status(Clock::time_point now);
   /// The listener's and the queue's counters, as the status reports them.
   IngestCounters ingest_counters() const;
