@@ -44,11 +44,36 @@ struct Recorder {
   }
 };
 
+/// A wall clock standing at `us` microseconds.
+MapTilePublisher::RevisionClock fixed_clock(std::uint64_t us) {
+  return [us] { return us; };
+}
+
 }  // namespace
+
+TEST(MapTilePublisher, RevisionsFollowTheWallClockAndNeverRepeat) {
+  // Two aggregators (a hot standby): the one that started first but publishes later must give
+  // the higher revision, and one aggregator's revisions increase even while its clock stalls.
+  Recorder out;
+  std::uint64_t now_us = 5000;
+  MapTilePublisher publisher(out.write(), 0.0, [&now_us] { return now_us; });
+  const MapTilePublisher::Clock::time_point t0{};
+  publisher.offer(tile(0, 0, 3), t0);
+  publisher.offer(tile(0, 0, 4), t0 + milliseconds(1));  // same clock reading: +1
+  now_us = 9000;
+  publisher.offer(tile(0, 0, 5), t0 + milliseconds(2));  // the clock moved on: its reading
+  now_us = 7000;
+  publisher.offer(tile(0, 0, 6), t0 + milliseconds(3));  // the clock went back: still +1
+  ASSERT_EQ(out.written.size(), 4u);
+  EXPECT_EQ(out.written[0].revision(), 5000u);
+  EXPECT_EQ(out.written[1].revision(), 5001u);
+  EXPECT_EQ(out.written[2].revision(), 9000u);
+  EXPECT_EQ(out.written[3].revision(), 9001u);
+}
 
 TEST(MapTilePublisher, HoldsChangesWithinThePeriodAndSendsTheNewestOnce) {
   Recorder out;
-  MapTilePublisher publisher(out.write(), 1.0, 1000);
+  MapTilePublisher publisher(out.write(), 1.0, fixed_clock(1000));
   const MapTilePublisher::Clock::time_point t0{};
   publisher.offer(tile(0, 0, 3), t0);
   publisher.offer(tile(1, 0, 2), t0);
@@ -79,7 +104,7 @@ TEST(MapTilePublisher, HoldsChangesWithinThePeriodAndSendsTheNewestOnce) {
 
 TEST(MapTilePublisher, FlushAllWritesEveryHeldTile) {
   Recorder out;
-  MapTilePublisher publisher(out.write(), 60.0, 1);
+  MapTilePublisher publisher(out.write(), 60.0, fixed_clock(1));
   const MapTilePublisher::Clock::time_point t0{};
   publisher.offer(tile(0, 0, 1), t0);
   publisher.offer(tile(2, -1, 1), t0);
@@ -99,7 +124,7 @@ TEST(MapTilePublisher, FlushAllWritesEveryHeldTile) {
 TEST(MapTilePublisher, FailedWritesAreCounted) {
   Recorder out;
   out.fail = true;
-  MapTilePublisher publisher(out.write(), 0.0, 1);
+  MapTilePublisher publisher(out.write(), 0.0, fixed_clock(1));
   publisher.offer(tile(0, 0, 1));
   const MapTileCounters c = publisher.counters();
   EXPECT_EQ(c.published, 0u);

@@ -186,11 +186,12 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
       topic(config_.topics.map_tiles, tile_type_), output_qos(dds::map_tiles_writer_qos()));
   if (!tile_writer)
     throw std::runtime_error("cannot create the writer of " + config_.topics.map_tiles);
-  // Revisions start at the wall clock's microseconds: above the previous run's.
-  const auto first_revision = static_cast<std::uint64_t>(dds::wall_clock_now().nanoseconds / 1000);
+  // Revisions follow the wall clock's microseconds: above the previous run's, and comparable
+  // with a standby's.
   tiles_ = std::make_unique<MapTilePublisher>(
       [tile_writer](litamin2::msg::MapTile& msg) { return tile_writer->write(&msg); },
-      config_.map_tiles.publish_period_s, first_revision);
+      config_.map_tiles.publish_period_s,
+      [] { return static_cast<std::uint64_t>(dds::wall_clock_now().nanoseconds / 1000); });
   sink_ = std::make_unique<Sink>(poses_writer, summary_writer, relay_, cloud_.get(), *tiles_);
   worker_ = std::make_unique<MappingWorker>(*core_, queue_, *sink_, config_);
   relay_.start();

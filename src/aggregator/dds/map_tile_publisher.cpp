@@ -6,18 +6,21 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 namespace litamin2::aggregator {
 
-MapTilePublisher::MapTilePublisher(Write write, double period_s, std::uint64_t first_revision)
+MapTilePublisher::MapTilePublisher(Write write, double period_s, RevisionClock revision_clock)
     : write_(std::move(write)),
       limiter_(
           std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period_s))),
-      next_revision_(first_revision) {}
+      revision_clock_(std::move(revision_clock)) {}
 
 void MapTilePublisher::offer(const TileOutput& tile, Clock::time_point now) {
   litamin2::msg::MapTile msg = to_map_tile_msg(tile, 0, dds::wall_clock_now());
   std::lock_guard lock(mutex_);
-  msg.revision(next_revision_++);
+  last_revision_ = std::max(last_revision_ + 1, revision_clock_());
+  msg.revision(last_revision_);
   if (limiter_.offer(tile.key, now)) {
     write(msg);
     return;

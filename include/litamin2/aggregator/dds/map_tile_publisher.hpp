@@ -7,9 +7,13 @@
 /// stop; at a kill the held ones (at most a period's changes) are lost to the wire, not to the
 /// store, and go out again at the next start (every tile is published once at start).
 ///
-/// Revisions come from one counter per process, started at the wall clock's microseconds since
-/// the epoch: a tile's revision increases with each change published, also across restarts
-/// while the wall clock does not go back.
+/// Revisions follow the wall clock: each is the wall clock's microseconds since the epoch, or
+/// the previous revision + 1 if that is larger. A tile's revision increases with each change
+/// published, also across restarts while the wall clock does not go back; and the revisions of
+/// two aggregators (a hot standby, standby.strength) are comparable by when they were
+/// published, so a client keeping the highest revision per tile takes the standby's tiles
+/// after a switch even if the standby started first (with clocks in sync to well under a
+/// publish period).
 
 #include "litamin2/aggregator/aggregator_outputs.hpp"
 #include "litamin2/aggregator/tile_rate_limiter.hpp"
@@ -40,8 +44,10 @@ class MapTilePublisher {
 
   /// Writes one sample (the DataWriter's write; a recorder in tests); false: failed.
   using Write = std::function<bool(litamin2::msg::MapTile&)>;
+  /// The wall clock in microseconds since the epoch (a fixed or stepped clock in tests).
+  using RevisionClock = std::function<std::uint64_t()>;
 
-  MapTilePublisher(Write write, double period_s, std::uint64_t first_revision);
+  MapTilePublisher(Write write, double period_s, RevisionClock revision_clock);
 
   /// The mapping thread: `tile` changed.
   void offer(const TileOutput& tile, Clock::time_point now = Clock::now());
@@ -59,7 +65,9 @@ class MapTilePublisher {
   mutable std::mutex mutex_;
   TileRateLimiter limiter_;
   std::map<mapping::TileKey, litamin2::msg::MapTile> held_;
-  std::uint64_t next_revision_;
+  RevisionClock revision_clock_;
+  /// The last revision given, 0 before the first.
+  std::uint64_t last_revision_ = 0;
   std::uint64_t published_ = 0;
   std::uint64_t write_failures_ = 0;
 };
