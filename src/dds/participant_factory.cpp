@@ -158,6 +158,7 @@ ParticipantPtr create_participant(const ParticipantConfig& config, std::string* 
     if (!loss) return true;
     if (!apply_test_udp_loss(qos, *loss, &loss_error)) return false;
     turn_off_intraprocess_delivery();
+    report_test_udp_loss_at_exit();
     spdlog::warn(
         "TEST ONLY: {}={}: participant '{}' drops {} % of the UDP DATA, DATA_FRAG, HEARTBEAT and "
         "ACKNACK messages it sends, shared memory and intraprocess delivery off; never set it in a "

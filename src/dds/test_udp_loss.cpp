@@ -1,7 +1,11 @@
 #include "litamin2/dds/test_udp_loss.hpp"
 
+#include <atomic>
+#include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <mutex>
+#include <random>
 #include <vector>
 
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
@@ -16,6 +20,26 @@ namespace frtps = eprosima::fastdds::rtps;
 
 namespace {
 
+/// Submessages of one kind seen by the lossy transports of this process, and datagrams dropped.
+struct KindCounter {
+  std::atomic<std::uint64_t> seen{0};
+  std::atomic<std::uint64_t> dropped{0};
+};
+KindCounter g_data, g_data_frag, g_heartbeat, g_acknack;
+
+/// A filter that drops `percent` % of the messages at random (independently, as a lossy link
+/// does; Fast DDS's own percentage drops every (100/N)-th message of a kind) and counts.
+frtps::test_UDPv4TransportDescriptor::filter random_drop(KindCounter& counter,
+                                                         std::uint8_t percent) {
+  return [&counter, percent](eprosima::fastrtps::rtps::CDRMessage_t&) {
+    thread_local std::mt19937 random{std::random_device{}()};
+    counter.seen.fetch_add(1, std::memory_order_relaxed);
+    const bool drop = std::uniform_int_distribution<int>(0, 99)(random) < percent;
+    if (drop) counter.dropped.fetch_add(1, std::memory_order_relaxed);
+    return drop;
+  };
+}
+
 std::shared_ptr<frtps::test_UDPv4TransportDescriptor> lossy_copy(
     const frtps::UDPv4TransportDescriptor& udp, std::uint8_t percent) {
   auto lossy = std::make_shared<frtps::test_UDPv4TransportDescriptor>();
@@ -25,11 +49,17 @@ std::shared_ptr<frtps::test_UDPv4TransportDescriptor> lossy_copy(
   lossy->TTL = udp.TTL;
   lossy->maxMessageSize = udp.maxMessageSize;
   lossy->maxInitialPeersRange = udp.maxInitialPeersRange;
-  lossy->dropDataMessagesPercentage = percent;
-  lossy->dropDataFragMessagesPercentage = percent;
-  lossy->dropHeartbeatMessagesPercentage = percent;
-  lossy->dropAckNackMessagesPercentage = percent;
+  // Fast DDS's percentages stay 0 (they are deterministic); the filters drop at random.
+  lossy->drop_data_messages_filter_ = random_drop(g_data, percent);
+  lossy->drop_data_frag_messages_filter_ = random_drop(g_data_frag, percent);
+  lossy->drop_heartbeat_messages_filter_ = random_drop(g_heartbeat, percent);
+  lossy->drop_ack_nack_messages_filter_ = random_drop(g_acknack, percent);
   return lossy;
+}
+
+TestUdpLossCounts::Kind read(const KindCounter& counter) {
+  return {counter.seen.load(std::memory_order_relaxed),
+          counter.dropped.load(std::memory_order_relaxed)};
 }
 
 }  // namespace
@@ -91,6 +121,28 @@ bool apply_test_udp_loss(eprosima::fastdds::dds::DomainParticipantQos& qos, std:
   }
   transport.user_transports = std::move(kept);
   return true;
+}
+
+TestUdpLossCounts test_udp_loss_counts() {
+  return {read(g_data), read(g_data_frag), read(g_heartbeat), read(g_acknack)};
+}
+
+std::string to_string(const TestUdpLossCounts& counts) {
+  const auto kind = [](const char* name, const TestUdpLossCounts::Kind& k) {
+    return std::string(name) + " " + std::to_string(k.dropped) + "/" + std::to_string(k.seen);
+  };
+  return kind("DATA", counts.data) + ", " + kind("DATA_FRAG", counts.data_frag) + ", " +
+         kind("HEARTBEAT", counts.heartbeat) + ", " + kind("ACKNACK", counts.acknack);
+}
+
+void report_test_udp_loss_at_exit() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    std::atexit([] {
+      std::fprintf(stderr, "TEST ONLY: %s: datagrams dropped/submessages seen: %s\n",
+                   kTestUdpLossEnv, to_string(test_udp_loss_counts()).c_str());
+    });
+  });
 }
 
 void turn_off_intraprocess_delivery() {

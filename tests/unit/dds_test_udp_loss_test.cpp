@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <thread>
 
@@ -97,11 +98,21 @@ TEST(TestUdpLoss, LoopbackProfileKeepsItsWhitelistAndBuffersAndLosesShm) {
   EXPECT_EQ(lossy->sendBufferSize, 3u << 20);
   EXPECT_EQ(lossy->receiveBufferSize, 3u << 20);
   EXPECT_EQ(lossy->maxInitialPeersRange, 32u);
-  EXPECT_EQ(lossy->dropDataMessagesPercentage, 10);
-  EXPECT_EQ(lossy->dropDataFragMessagesPercentage, 10);
-  EXPECT_EQ(lossy->dropHeartbeatMessagesPercentage, 10);
-  EXPECT_EQ(lossy->dropAckNackMessagesPercentage, 10);
+  // Random drops through the filters, not Fast DDS's deterministic every-N-th percentages.
+  EXPECT_EQ(lossy->dropDataMessagesPercentage, 0);
   EXPECT_EQ(lossy->percentageOfMessagesToDrop, 0);
+  ASSERT_TRUE(lossy->drop_data_messages_filter_ && lossy->drop_data_frag_messages_filter_ &&
+              lossy->drop_heartbeat_messages_filter_ && lossy->drop_ack_nack_messages_filter_);
+  const auto before = test_udp_loss_counts();
+  eprosima::fastrtps::rtps::CDRMessage_t message(64);
+  int dropped = 0;
+  for (int i = 0; i < 2000; ++i) dropped += lossy->drop_heartbeat_messages_filter_(message);
+  const auto after = test_udp_loss_counts();
+  EXPECT_EQ(after.heartbeat.seen - before.heartbeat.seen, 2000u);
+  EXPECT_EQ(after.heartbeat.dropped - before.heartbeat.dropped, static_cast<unsigned>(dropped));
+  EXPECT_GT(dropped, 120);  // 10 % of 2000: 200 +- 13.4 (1 sigma)
+  EXPECT_LT(dropped, 280);
+  EXPECT_EQ(after.data.seen, before.data.seen);
   // Unicast discovery on the loopback peer is untouched.
   EXPECT_EQ(qos.wire_protocol().builtin.initialPeersList.size(), 1u);
   EXPECT_TRUE(qos.wire_protocol().builtin.metatrafficMulticastLocatorList.empty());
@@ -194,7 +205,15 @@ int lossy_round_trip(const char* percent, int count, int points, int seconds) {
 
 TEST(TestUdpLoss, ReliableDeliveryCompletesThroughALossyLink) {
   // 20 scans of ~160 kB (3 DATA_FRAGs each) with 20 % of every kind of message dropped.
+  const auto before = test_udp_loss_counts();
   EXPECT_EQ(lossy_round_trip("20", 20, 10000, 60), 20);
+  const auto after = test_udp_loss_counts();
+  const auto frags = after.data_frag.seen - before.data_frag.seen;
+  const auto lost = after.data_frag.dropped - before.data_frag.dropped;
+  std::printf("DATA_FRAG: %llu of %llu dropped; %s\n", static_cast<unsigned long long>(lost),
+              static_cast<unsigned long long>(frags), to_string(after).c_str());
+  EXPECT_GE(frags, 60u);  // 20 x 3 fragments at least once
+  EXPECT_GT(lost, 0u);    // dropped, and delivered anyway
 }
 
 TEST(TestUdpLoss, EverythingDroppedDeliversNothing) {
