@@ -10,7 +10,8 @@
 #             test_UDPv4Transport drops at send, so both ends of the link are lossy:
 #             patches and heartbeats one way, acknacks the other; the daemon's odometry and
 #             status to the probe are lossy too). No delay is emulated.
-# Checked in each run: every odometry message reaches the probe (reliable), the aggregator stores
+# Checked in each run: the services' UDP sockets are all on 127.0.0.1 (a veth with 10.99.0.1 is
+# added to the namespace to make that meaningful), every odometry message reaches the probe (reliable), the aggregator stores
 # every keyframe the daemon reported (0 lost), per stream with ids 0..n-1 and no duplicates,
 # within INGEST_BOUND_S (default 30 s) after the replay's last scan; every process exits 0.
 # Measured: ingest lag (last scan sent -> last keyframe stored), UDP datagrams sent in the
@@ -45,6 +46,16 @@ echo "== simulating ${#streams[@]} vehicles x $frames frames"
 rm -rf fleet
 "$bin/sim/litamin2-sim" --builtin loop --fleet ${#streams[@]} --frames 0:"$frames" \
   --output fleet 2> sim.log || { cat sim.log; exit 1; }
+
+# A second interface with another address in the namespace, so that the check that the lossy
+# transports keep the loopback profile's whitelist (sockets on 127.0.0.1 only) means something.
+other_if=0
+if ip link add lossy0 type veth peer name lossy1 2> /dev/null; then
+  ip addr add 10.99.0.1/24 dev lossy0 && ip link set lossy0 up && ip link set lossy1 up && other_if=1
+fi
+sockets() {  # sockets PID: local addresses of its UDP sockets
+  ss -uanp | awk -v p="pid=$1," 'index($0, p) {print $4}' | sort -u
+}
 
 udp_out() { awk '/^Udp:/ { if (++n == 2) print $5 }' /proc/net/snmp; }  # OutDatagrams
 stored() { sqlite3 -readonly "$1" "select count(*) from keyframes" 2>/dev/null || echo 0; }
@@ -83,6 +94,13 @@ YAML
     "${args[@]}" > "$dir/probe.log" 2>&1 &
   local probe_pid=$!
   pids+=("$probe_pid")
+  # Once the participants are up: every UDP socket of both services on 127.0.0.1.
+  for _ in $(seq 1 50); do [ -n "$(sockets "$daemon_pid")" ] && [ -n "$(sockets "$aggregator_pid")" ] && break; sleep 0.1; done
+  local elsewhere
+  elsewhere=$( (sockets "$daemon_pid"; sockets "$aggregator_pid") | grep -v '^127\.0\.0\.1:' || true)
+  [ -z "$elsewhere" ] || fail "$name: sockets off the loopback whitelist: $elsewhere"
+  [ -n "$(sockets "$daemon_pid")" ] || fail "$name: litamin2d has no UDP socket"
+  [ "$other_if" -eq 1 ] && echo "  UDP sockets: $( (sockets "$daemon_pid"; sockets "$aggregator_pid") | wc -l), all on 127.0.0.1 (10.99.0.1 also present)"
   local replay_rc=0
   timeout $((frames / rate + 60)) "$bin/replay/litamin2-replay" --domain "$domain" \
     --profile loopback --rate "$rate" --start-delay 2 "${args[@]}" \
