@@ -14,7 +14,8 @@
 # added to the namespace to make that meaningful), every odometry message reaches the probe (reliable), the aggregator stores
 # every keyframe the daemon reported (0 lost), per stream with ids 0..n-1 and no duplicates,
 # within INGEST_BOUND_S (default 30 s) after the replay's last scan; every process exits 0.
-# Measured: ingest lag (last scan sent -> last keyframe stored), UDP datagrams sent in the
+# Measured: ingest lag (last scan sent -> last keyframe stored, polled every 0.1 s once the probe
+# has every odometry message; litamin2d stays up until then), UDP datagrams sent in the
 # namespace (/proc/net/snmp; the retransmissions' cost shows as the difference to the baseline;
 # dropped messages are never handed to the kernel). Prints one JSON line.
 # Usage: lossy_link.sh BUILD_DIR WORK_DIR

@@ -44,7 +44,8 @@
 #             (LITAMIN2_TEST_UDP_LOSS_PERCENT=10: Fast DDS's test UDP transport, no shared memory;
 #             src/dds/test_udp_loss.cpp), for kernels without sch_netem; no delay. Measured:
 #             keyframes_lost_loss10 (target 0) and datagrams_dropped_loss10 (the drops the two
-#             processes counted; must be > 0, or the loss was not in effect).
+#             processes counted; must be > 0, or the loss was not in effect). litamin2d stays up
+#             until every keyframe is stored (its SIGTERM does not wait for acknowledgments).
 #   dserver   the chain scenario with discovery through a Discovery Server instead of unicast
 #             peers: fast-discovery-server (what `fastdds discovery` runs, fastdds-tools) on the
 #             aggregator host, with a profile bound to that host's address (server_xml). The
