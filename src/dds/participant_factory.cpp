@@ -1,6 +1,7 @@
 #include "litamin2/dds/participant_factory.hpp"
 
 #include "litamin2/dds/security_files.hpp"
+#include "litamin2/dds/test_udp_loss.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -149,6 +150,22 @@ ParticipantPtr create_participant(const ParticipantConfig& config, std::string* 
   if (const auto why = security_files_error(config.security, static_cast<int>(config.domain_id))) {
     return fail(*why);
   }
+  std::string loss_error;
+  const std::optional<std::uint8_t> loss = test_udp_loss_from_env(&loss_error);
+  if (!loss && !loss_error.empty()) return fail(loss_error);
+  // TEST ONLY (test_udp_loss.hpp): the participant's UDPv4 transports made lossy, SHM removed.
+  const auto make_lossy = [&](fdds::DomainParticipantQos& qos) {
+    if (!loss) return true;
+    if (!apply_test_udp_loss(qos, *loss, &loss_error)) return false;
+    turn_off_intraprocess_delivery();
+    report_test_udp_loss_at_exit();
+    spdlog::warn(
+        "TEST ONLY: {}={}: participant '{}' drops {} % of the UDP DATA, DATA_FRAG, HEARTBEAT and "
+        "ACKNACK messages it sends, shared memory and intraprocess delivery off; never set it in a "
+        "deployment",
+        kTestUdpLossEnv, *loss, qos.name().to_string(), *loss);
+    return true;
+  };
   fdds::DomainParticipant* participant = nullptr;
   if (config.transport == TransportProfile::kXml) {
     if (factory->load_XML_profiles_file(config.xml_file) != ReturnCode_t::RETCODE_OK) {
@@ -160,7 +177,8 @@ ParticipantPtr create_participant(const ParticipantConfig& config, std::string* 
       return fail("no participant profile '" + config.xml_profile + "' in '" + config.xml_file +
                   "'");
     }
-    if (config.security.enabled || !config.user_data.empty()) {
+    if (config.security.enabled || !config.user_data.empty() || loss) {
+      if (!make_lossy(qos)) return fail(loss_error);
       if (config.security.enabled) add_security_properties(config.security, qos);
       if (!config.user_data.empty())
         qos.user_data().data_vec(std::vector<eprosima::fastrtps::rtps::octet>(
@@ -172,8 +190,10 @@ ParticipantPtr create_participant(const ParticipantConfig& config, std::string* 
           static_cast<fdds::DomainId_t>(config.domain_id), config.xml_profile, listener, mask);
     }
   } else {
-    participant = factory->create_participant(static_cast<fdds::DomainId_t>(config.domain_id),
-                                              participant_qos(config), listener, mask);
+    fdds::DomainParticipantQos qos = participant_qos(config);
+    if (!make_lossy(qos)) return fail(loss_error);
+    participant = factory->create_participant(static_cast<fdds::DomainId_t>(config.domain_id), qos,
+                                              listener, mask);
   }
   if (participant == nullptr) {
     return fail(std::string("Fast DDS could not create a participant (profile ") +

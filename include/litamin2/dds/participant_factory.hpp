@@ -69,7 +69,10 @@ using ParticipantPtr =
 /// Creates a participant (installing the spdlog log forwarding first, see
 /// forward_fastdds_log_to_spdlog). Returns nullptr and sets *error (if given) when the XML file
 /// cannot be loaded, the profile does not exist, the security files do not pass
-/// security_files_error or Fast DDS refuses the QoS.
+/// security_files_error, Fast DDS refuses the QoS, or the test-only variable
+/// LITAMIN2_TEST_UDP_LOSS_PERCENT is invalid. When that variable is set (tests only), the
+/// participant's UDPv4 transports are made lossy and its shared memory removed, with a warning
+/// (test_udp_loss.hpp).
 ParticipantPtr create_participant(
     const ParticipantConfig& config, std::string* error = nullptr,
     eprosima::fastdds::dds::DomainParticipantListener* listener = nullptr,
