@@ -10,6 +10,9 @@
 #             test_UDPv4Transport drops at send, so both ends of the link are lossy:
 #             patches and heartbeats one way, acknacks the other; the daemon's odometry and
 #             status to the probe are lossy too). No delay is emulated.
+#   lossy_early_stop  (with EARLY_STOP=1) the same, with litamin2d sent SIGTERM as soon as the probe has the last
+#             odometry message (not when the aggregator has stored everything): its shutdown
+#             waits, within shutdown_timeout_s, for the patches still being resent.
 # Checked in each run: the services' UDP sockets are all on 127.0.0.1 (a veth with 10.99.0.1 is
 # added to the namespace to make that meaningful), every odometry message reaches the probe (reliable), the aggregator stores
 # every keyframe the daemon reported (0 lost), per stream with ids 0..n-1 and no duplicates,
@@ -62,8 +65,8 @@ udp_out() { awk '/^Udp:/ { if (++n == 2) print $5 }' /proc/net/snmp; }  # OutDat
 stored() { sqlite3 -readonly "$1" "select count(*) from keyframes" 2>/dev/null || echo 0; }
 
 declare -A result
-run() {  # run NAME LOSS_PERCENT DOMAIN
-  local name=$1 percent=$2 domain=$3 dir="$work/$1"
+run() {  # run NAME LOSS_PERCENT DOMAIN [early]
+  local name=$1 percent=$2 domain=$3 dir="$work/$1" early=${4:-}
   rm -rf "$dir"
   mkdir -p "$dir"
   echo "== $name: litamin2d and the aggregator with LITAMIN2_TEST_UDP_LOSS_PERCENT=$percent"
@@ -115,6 +118,15 @@ YAML
   [ "$probe_rc" -eq 0 ] || fail "$name: the probe did not get every odometry message"
   local published n=0 done_at=""
   published=$(grep -o 'keyframes [0-9]*' "$dir/probe.log" | awk '{s += $2} END {print s + 0}')
+  local rc=0
+  if [ -n "$early" ]; then
+    # litamin2d stopped as soon as the last odometry arrived: its shutdown waits (within
+    # shutdown_timeout_s) for the aggregator to acknowledge the patches still being resent.
+    kill -TERM "$daemon_pid"
+    wait "$daemon_pid" || rc=$?
+    [ "$rc" -eq 0 ] || fail "$name: litamin2d exited with $rc"
+    grep -q "not acknowledged" "$dir/daemon.log" && echo "  litamin2d: $(grep -o 'map patches.*' "$dir/daemon.log")"
+  fi
   # Ingest: until every keyframe the daemon reported is stored, or the bound.
   while awk -v a="$replay_end" -v b="$(date +%s.%N)" -v m="$bound" 'BEGIN {exit !(b - a < m)}'; do
     n=$(stored "$dir/aggregator.db")
@@ -125,10 +137,13 @@ YAML
     sleep 0.1
   done
   n=$(stored "$dir/aggregator.db")
-  kill -TERM "$daemon_pid" "$aggregator_pid"
-  local rc=0
-  wait "$daemon_pid" || rc=$?
-  [ "$rc" -eq 0 ] || fail "$name: litamin2d exited with $rc"
+  if [ -z "$early" ]; then
+    kill -TERM "$daemon_pid" "$aggregator_pid"
+    wait "$daemon_pid" || rc=$?
+    [ "$rc" -eq 0 ] || fail "$name: litamin2d exited with $rc"
+  else
+    kill -TERM "$aggregator_pid"
+  fi
   rc=0
   wait "$aggregator_pid" || rc=$?
   [ "$rc" -eq 0 ] || fail "$name: the aggregator exited with $rc"
@@ -173,12 +188,14 @@ YAML
 
 run baseline 0 48
 run lossy "$loss" 49
+if [ "${EARLY_STOP:-0}" = 1 ]; then run lossy_early_stop "$loss" 50 early; fi
 
 echo "{\"loss_percent\": $loss, \"frames\": $frames, \"streams\": ${#streams[@]}," \
   "\"keyframes_published\": ${result[lossy_published]}," \
   "\"keyframes_lost_loss$loss\": ${result[lossy_lost]}," \
   "\"ingest_lag_s_loss0\": ${result[baseline_lag]}, \"ingest_lag_s_loss$loss\": ${result[lossy_lag]}," \
   "\"udp_datagrams_loss0\": ${result[baseline_udp]}, \"udp_datagrams_loss$loss\": ${result[lossy_udp]}," \
-  "\"datagrams_dropped_loss0\": ${result[baseline_dropped]}, \"datagrams_dropped_loss$loss\": ${result[lossy_dropped]}}"
+  "\"datagrams_dropped_loss0\": ${result[baseline_dropped]}, \"datagrams_dropped_loss$loss\": ${result[lossy_dropped]}," \
+  "\"keyframes_lost_loss${loss}_early_stop\": ${result[lossy_early_stop_lost]:-null}}"
 [ "$failures" -eq 0 ] || { echo "lossy_link FAILED ($failures failure(s))"; exit 1; }
 echo "lossy_link OK"

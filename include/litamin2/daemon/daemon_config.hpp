@@ -165,7 +165,8 @@ struct DaemonConfig {
   service::MetricsConfig metrics;
   /// spdlog level: trace, debug, info, warn, error, critical, off.
   std::string log_level = "info";
-  /// Seconds given to queued frames at shutdown before they are dropped.
+  /// Seconds given at shutdown to the queued frames (dropped after it) and then, with what is
+  /// left, to the readers' acknowledgment of the map patches written.
   double shutdown_timeout_s = 1.0;
 };
 

@@ -666,8 +666,26 @@ DrainResult DaemonNode::shutdown() {
     // A merged frame still waiting for a sensor is queued with what arrived.
     if (s->merged) s->merged->flush();
   }
+  const auto deadline =
+      Clock::now() +
+      std::chrono::milliseconds(static_cast<std::int64_t>(config_.shutdown_timeout_s * 1000.0));
   const DrainResult result = scheduler_->drain(
-      std::chrono::milliseconds(static_cast<std::int64_t>(config_.shutdown_timeout_s * 1000.0)));
+      std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()));
+  // What is left of the budget goes to the map patches still under repair (reliable writers
+  // resend what a lossy link lost): a process that exits at once loses them for the aggregator.
+  std::size_t unacknowledged = 0;
+  for (auto& s : streams_) {
+    if (!s->patch_writer) continue;
+    const std::int64_t left_ns = std::max<std::int64_t>(
+        0, std::chrono::duration_cast<std::chrono::nanoseconds>(deadline - Clock::now()).count());
+    const eprosima::fastrtps::Duration_t wait(static_cast<std::int32_t>(left_ns / 1000000000),
+                                              static_cast<std::uint32_t>(left_ns % 1000000000));
+    if (s->patch_writer->wait_for_acknowledgments(wait) != ReturnCode_t::RETCODE_OK)
+      ++unacknowledged;
+  }
+  if (unacknowledged > 0)
+    spdlog::warn("shut down: map patches of {} stream(s) not acknowledged within {} s",
+                 unacknowledged, config_.shutdown_timeout_s);
   publish_status(Clock::now());
   spdlog::info("shut down: {} queued frame(s) dropped{}; {}", result.dropped,
                result.complete ? "" : fmt::format(", {} still in processing", result.in_flight),
