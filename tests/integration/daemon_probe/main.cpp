@@ -166,8 +166,21 @@ int main(int argc, char** argv) {
     if (all_received || Clock::now() > deadline) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
-  // Give the daemon a status period to report the last frames.
-  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  // Wait for a status that reports every frame of every stream processed: a status period, or
+  // longer where a lossy link lost the last status and it is resent after the next heartbeat
+  // (bounded at 10 s; the check below then fails on the last status received).
+  const auto status_deadline = Clock::now() + std::chrono::seconds(10);
+  for (;;) {
+    bool all_reported = true;
+    {
+      std::lock_guard lock(status_listener.mutex);
+      for (auto& p : probes)
+        all_reported = all_reported &&
+                       status_listener.latest[p.id]["frames_processed"] == std::to_string(expect);
+    }
+    if (all_reported || Clock::now() > status_deadline) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
 
   bool ok = true;
   for (auto& p : probes) {
