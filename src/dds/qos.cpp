@@ -150,6 +150,10 @@ fdds::DataWriterQos map_patches_writer_qos(std::int32_t history_per_stream) {
          fdds::KEEP_ALL_HISTORY_QOS, 1);
   unlimited(qos.resource_limits());
   qos.resource_limits().max_samples_per_instance = history_per_stream > 0 ? history_per_stream : 1;
+  // A patch lost on the link is resent when the reader's negative acknowledgment answers a
+  // heartbeat: Fast DDS's default period, 3 s, made a lost last patch wait that long (and longer
+  // than litamin2d's shutdown budget). 0.5 s: a heartbeat is a few dozen bytes.
+  qos.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, 500000000);
   return qos;
 }
 
