@@ -7,6 +7,7 @@
 #include "litamin2/mapping/distribution_moments.hpp"
 #include "litamin2/mapping/loop_verifier.hpp"
 #include "litamin2/mapping/place_descriptor.hpp"
+#include "support/scene_views.hpp"
 #include "support/synthetic_scene.hpp"
 
 #include <gtest/gtest.h>
@@ -15,30 +16,9 @@ using namespace litamin2;
 using namespace litamin2::mapping;
 using litamin2::testing::planar_pose;
 
-namespace {
-
-/// Distributions of the scene seen from a sensor at `sensor` (scene frame).
-std::vector<Distribution> view(const PointCloud& scene, const Eigen::Isometry3d& sensor) {
-  Voxelizer voxelizer(VoxelizerConfig{});
-  return voxelizer.voxelize(litamin2::testing::transformed(scene, sensor.inverse()));
-}
-
-VoxelMap map_of(const std::vector<Distribution>& distributions) {
-  VoxelizerConfig voxels;
-  voxels.min_points = 1;
-  VoxelMap map(voxels, VoxelMapConfig{});
-  map.insert(moments_of(distributions), Eigen::Isometry3d::Identity());
-  return map;
-}
-
-/// The scene's buildings and poles mirrored across the road: another street.
-PointCloud mirrored(const PointCloud& scene) {
-  PointCloud out = scene;
-  for (auto& p : out.points) p.y() = -p.y();
-  return out;
-}
-
-}  // namespace
+using litamin2::testing::map_of;
+using litamin2::testing::mirrored;
+using litamin2::testing::view;
 
 TEST(MappingPlaceDescriptor, FindsTheYawBetweenTwoViews) {
   const PointCloud scene = litamin2::testing::synthetic_scene(1);
