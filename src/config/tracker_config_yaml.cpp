@@ -185,6 +185,10 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node, const TrackerConf
   keyframe.read("angle_deg", config.keyframe.angle_deg);
   keyframe.reject_unknown();
 
+  YamlSection prediction(root.child("prediction"), "prediction");
+  prediction.read("max_interval_ratio", config.prediction.max_interval_ratio);
+  prediction.reject_unknown();
+
   YamlSection deskew(root.child("deskew"), "deskew");
   DeskewConfig& d = config.deskew;
   deskew.read("enabled", d.enabled);
@@ -286,6 +290,9 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "keyframe" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "distance" << YAML::Value << c.keyframe.distance;
   out << YAML::Key << "angle_deg" << YAML::Value << c.keyframe.angle_deg;
+  out << YAML::EndMap;
+  out << YAML::Key << "prediction" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "max_interval_ratio" << YAML::Value << c.prediction.max_interval_ratio;
   out << YAML::EndMap;
   const DeskewConfig& d = c.deskew;
   out << YAML::Key << "deskew" << YAML::Value << YAML::BeginMap;

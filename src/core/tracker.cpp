@@ -1,5 +1,6 @@
 #include "litamin2/core/tracker.hpp"
 
+#include "litamin2/core/motion_model.hpp"
 #include "litamin2/core/scan_registration.hpp"
 #include "litamin2/core/sensor_preset.hpp"
 #include "litamin2/core/stopwatch.hpp"
@@ -18,15 +19,6 @@ double rotation_angle(const Eigen::Matrix3d& rotation) {
 
 double inlier_share(const ScanRegistration& r) {
   return r.source.empty() ? 0.0 : static_cast<double>(r.result.inliers) / r.source.size();
-}
-
-/// The motion `velocity` scaled by s: s times the translation and s times the rotation angle.
-Eigen::Isometry3d scaled_motion(const Eigen::Isometry3d& velocity, double s) {
-  const Eigen::AngleAxisd rotation(velocity.linear());
-  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
-  out.linear() = Eigen::AngleAxisd(s * rotation.angle(), rotation.axis()).toRotationMatrix();
-  out.translation() = s * velocity.translation();
-  return out;
 }
 
 /// 2 sigma^2 H^-1, sigma^2 = cost per residual degree of freedom (3 per correspondence).
@@ -134,7 +126,9 @@ FrameResult Tracker::process(const PointCloud& raw) {
   prepare_first_scan(raw);
   FrameResult frame;
   const PointCloud& scan = without_self_hits(raw, frame.self_hits);
-  const Eigen::Isometry3d predicted = pose_ * velocity_;
+  const Eigen::Isometry3d motion =
+      motion_scale_ == 1.0 ? velocity_ : scaled_motion(velocity_, motion_scale_);
+  const Eigen::Isometry3d predicted = pose_ * motion;
   Eigen::Isometry3d estimate = predicted;
   bool suspected_break = false;
   if (frames_ > 0 && !map_.empty() && search_) {
@@ -149,9 +143,9 @@ FrameResult Tracker::process(const PointCloud& raw) {
       // voxeliser's grid voxels must be those of the kept registration (the map merges them).
       frame.retried = true;
       for (double s : recovery.motion_scales) {
-        ScanRegistration other =
-            register_scan(scan, voxelizer_, map_, *search_, pose_ * scaled_motion(velocity_, s),
-                          config_.registration);
+        ScanRegistration other = register_scan(scan, voxelizer_, map_, *search_,
+                                               pose_ * scaled_motion(velocity_, s * motion_scale_),
+                                               config_.registration);
         const double other_share = other.result.valid ? inlier_share(other) : 0.0;
         registration.voxelize_ms += other.voxelize_ms;
         registration.register_ms += other.register_ms;

@@ -100,6 +100,9 @@ void validate(const TrackerConfig& c) {
   validate(rec.global_search);
   require(c.keyframe.distance >= 0.0, "keyframe.distance", c.keyframe.distance, "at least 0");
   require(c.keyframe.angle_deg >= 0.0, "keyframe.angle_deg", c.keyframe.angle_deg, "at least 0");
+  const double ratio = c.prediction.max_interval_ratio;
+  require(std::isfinite(ratio) && (ratio == 0.0 || (ratio >= 1.0 && ratio <= 100.0)),
+          "prediction.max_interval_ratio", ratio, "0 (off) or 1 to 100");
   validate(c.deskew);
 }
 

@@ -2,11 +2,13 @@
 // unchanged per-scan pipeline of Tracker::process(scan), and frames skipped over a gap.
 
 #include "litamin2/core/deskew.hpp"
+#include "litamin2/core/motion_model.hpp"
 #include "litamin2/core/scan_registration.hpp"
 #include "litamin2/core/stopwatch.hpp"
 #include "litamin2/core/tracker.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -29,14 +31,31 @@ const std::vector<float>* Tracker::point_times(const PointCloud& scan) {
   return &azimuth_times_;
 }
 
+double Tracker::prediction_scale(double interval) const {
+  const double max_ratio = config_.prediction.max_interval_ratio;
+  // Before two frames there is no motion to scale (velocity_ is the identity or a seed's).
+  if (max_ratio <= 0.0 || frames_ < 2) return 1.0;
+  const double ratio = interval_ratio(interval, last_interval_, max_ratio);
+  // Intervals equal up to the stamps' rounding (e.g. times.txt's 0.1 s steps in nanoseconds):
+  // the last motion as it is, bit for bit.
+  return std::abs(ratio - 1.0) <= 1e-6 ? 1.0 : ratio;
+}
+
 FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) {
   const DeskewConfig& d = config_.deskew;
-  if (!d.enabled) return process(scan);
   prepare_first_scan(scan);
   const double interval = interval_to(timing);
-  if (const auto why = point_times_error(scan)) throw std::invalid_argument("Tracker: " + *why);
-  const std::vector<float>* times = point_times(scan);
+  const std::vector<float>* times = nullptr;
+  if (d.enabled) {
+    if (const auto why = point_times_error(scan)) throw std::invalid_argument("Tracker: " + *why);
+    times = point_times(scan);
+  }
   const PointCloud* input = &scan;
+  // Constant velocity in time (PredictionConfig): the last motion spans last_interval_, this
+  // scan comes `interval` after the last one (longer when files were dropped).
+  motion_scale_ = prediction_scale(interval);
+  const Eigen::Isometry3d predicted_motion =
+      motion_scale_ == 1.0 ? velocity_ : scaled_motion(velocity_, motion_scale_);
   StageTimes first_pass;
   if (times) {
     // Pass 1: the motion within this sweep predicted by constant velocity, the previous frame's
@@ -56,8 +75,8 @@ FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) 
     if ((d.passes == 2 || redo_first) && interval > 0.0 && frames_ > 0 && !map_.empty() &&
         search_) {
       for (int round = 0; round < (redo_first ? 2 : 1); ++round) {
-        const ScanRegistration registered = register_scan(deskewed_, voxelizer_, map_, *search_,
-                                                          pose_ * velocity_, config_.registration);
+        const ScanRegistration registered = register_scan(
+            deskewed_, voxelizer_, map_, *search_, pose_ * predicted_motion, config_.registration);
         first_pass.voxelize_ms += registered.voxelize_ms;
         first_pass.register_ms += registered.register_ms;
         if (!registered.result.valid) break;
@@ -78,14 +97,16 @@ FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) 
     first_times_.clear();
   }
   FrameResult frame = process(*input);
+  motion_scale_ = 1.0;
   frame.deskewed = times != nullptr;
   frame.times.voxelize_ms += first_pass.voxelize_ms;
   frame.times.register_ms += first_pass.register_ms;
   frame.times.deskew_ms += first_pass.deskew_ms;
   has_stamp_ = true;
   last_stamp_ = timing.stamp;
-  // After restart_clock() there is no interval: the previous one still belongs to velocity_.
-  if (interval > 0.0) last_interval_ = interval;
+  // After restart_clock() there is no interval: the previous one still belongs to velocity_,
+  // as it does when the global search kept the last velocity over a break.
+  if (interval > 0.0 && !frame.pose_found) last_interval_ = interval;
   return frame;
 }
 
@@ -109,10 +130,16 @@ FrameResult Tracker::skip_frame() {
 
 FrameResult Tracker::skip_frame(const SweepTiming& timing) {
   const double interval = interval_to(timing);
-  FrameResult frame = skip_frame();
+  // Extrapolated over the skipped scan's interval; the velocity, and the interval it spans,
+  // stay the last registered ones.
+  motion_scale_ = prediction_scale(interval);
+  FrameResult frame;
+  pose_ = pose_ * (motion_scale_ == 1.0 ? velocity_ : scaled_motion(velocity_, motion_scale_));
+  motion_scale_ = 1.0;
+  frame.pose = pose_;
+  ++frames_;
   has_stamp_ = true;
   last_stamp_ = timing.stamp;
-  if (interval > 0.0) last_interval_ = interval;
   return frame;
 }
 

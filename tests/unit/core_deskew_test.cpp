@@ -304,8 +304,9 @@ TEST_F(DeskewTracker, WithoutDeskewTheTimedEntryIsBitIdentical) {
   Tracker plain(config), timed(config);
   for (std::size_t k = 0; k < 6; ++k) {
     const FrameResult a = plain.process(scans_with_times()[k]);
-    // Stamps are not even checked without deskew.
-    const FrameResult b = timed.process(scans_with_times()[k], SweepTiming{Stamp{0}});
+    // Equal intervals (to the stamps' nanoseconds): the prediction is the last motion as is.
+    const FrameResult b = timed.process(
+        scans_with_times()[k], SweepTiming{Stamp::from_seconds(0.1 * static_cast<double>(k))});
     EXPECT_EQ(0, std::memcmp(a.pose.matrix().data(), b.pose.matrix().data(), 16 * sizeof(double)));
     EXPECT_FALSE(b.deskewed);
   }
@@ -320,6 +321,14 @@ TEST_F(DeskewTracker, WithoutDeskewTheTimedEntryIsBitIdentical) {
     EXPECT_FALSE(b.deskewed);
     EXPECT_EQ(0, std::memcmp(a.pose.matrix().data(), b.pose.matrix().data(), 16 * sizeof(double)));
   }
+}
+
+TEST_F(DeskewTracker, StampsMustIncreaseWithoutDeskewToo) {
+  Tracker tracker{TrackerConfig{}};
+  tracker.process(scans_without_times()[0], SweepTiming{Stamp::from_seconds(1.0)});
+  EXPECT_THROW(tracker.process(scans_without_times()[1], SweepTiming{Stamp::from_seconds(0.9)}),
+               std::invalid_argument);
+  EXPECT_EQ(tracker.frames(), 1u);
 }
 
 TEST_F(DeskewTracker, StampsMustIncreaseAndTimesBeValid) {

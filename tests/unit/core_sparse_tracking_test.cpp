@@ -479,5 +479,79 @@ TEST(SparseTracking, TheGlobalSearchDoesNotRunOnOrdinaryFrames) {
   }
 }
 
+/// The tracker's poses for scans of `truth` stamped at `stamps` (seconds), with `config`.
+std::vector<FrameResult> timed_frames(const std::vector<Eigen::Isometry3d>& truth,
+                                      const std::vector<double>& stamps,
+                                      const TrackerConfig& config) {
+  const Street street;
+  Tracker tracker(config);
+  std::vector<FrameResult> frames;
+  for (std::size_t i = 0; i < truth.size(); ++i)
+    frames.push_back(tracker.process(ring_scan(street, truth[i], 100 + i),
+                                     SweepTiming{Stamp::from_seconds(stamps[i])}));
+  return frames;
+}
+
+/// 1 m a frame at 10 Hz, then 5 files missing: the next scan comes 0.6 s and 6 m later.
+struct GapDrive {
+  std::vector<Eigen::Isometry3d> truth;
+  std::vector<double> stamps;
+  GapDrive() {
+    std::vector<double> steps(10, 1.0);
+    steps[0] = 0.0;
+    steps.push_back(6.0);
+    for (int i = 0; i < 5; ++i) steps.push_back(1.0);
+    truth = drive(steps);
+    double t = 0.0;
+    for (double step : steps) stamps.push_back(t += 0.1 * std::max(step, 1.0));
+  }
+  /// The step error (m) of the scan after the gap.
+  double gap_error(const std::vector<FrameResult>& frames) const {
+    const Eigen::Isometry3d expected = truth[9].inverse() * truth[10];
+    const Eigen::Isometry3d got = frames[9].pose.inverse() * frames[10].pose;
+    return (expected.inverse() * got).translation().norm();
+  }
+};
+
+/// Only the prediction: no other starts, no search, so the gap's scan is registered from
+/// where the constant-velocity model puts it.
+TrackerConfig prediction_only(double max_interval_ratio) {
+  TrackerConfig config;
+  config.recovery.enabled = false;
+  config.prediction.max_interval_ratio = max_interval_ratio;
+  return config;
+}
+
+TEST(SparseTracking, TimedScansArePredictedOverTheirInterval) {
+  const GapDrive gap;
+  // Scaled to the 0.6 s since the last scan: predicted 6 m on, registered there.
+  const auto scaled = timed_frames(gap.truth, gap.stamps, prediction_only(10.0));
+  EXPECT_LT(gap.gap_error(scaled), 0.15);
+  // Off: one frame's motion, 5 m short; the registration does not get there.
+  const auto per_frame = timed_frames(gap.truth, gap.stamps, prediction_only(0.0));
+  EXPECT_GT(gap.gap_error(per_frame), 1.0);
+}
+
+TEST(SparseTracking, ASkippedTimedScanIsExtrapolatedOverItsInterval) {
+  const Street street;
+  const auto truth = drive(std::vector<double>(6, 1.0));
+  for (double max_ratio : {5.0, 2.0, 0.0}) {
+    TrackerConfig config;
+    config.prediction.max_interval_ratio = max_ratio;
+    Tracker tracker(config);
+    Eigen::Isometry3d last;
+    for (std::size_t i = 0; i < truth.size(); ++i)
+      last = tracker
+                 .process(ring_scan(street, truth[i], 100 + i),
+                          SweepTiming{Stamp::from_seconds(0.1 * static_cast<double>(i))})
+                 .pose;
+    // Unread for 0.3 s: 3 m on with the scaled prediction, at most max_ratio frames' motion
+    // (2 m), and 1 m (one frame) with the scaling off.
+    const FrameResult skipped = tracker.skip_frame(SweepTiming{Stamp::from_seconds(0.8)});
+    const double expected = max_ratio > 0.0 ? std::min(3.0, max_ratio) : 1.0;
+    EXPECT_NEAR((last.inverse() * skipped.pose).translation().x(), expected, 0.1) << max_ratio;
+  }
+}
+
 }  // namespace
 }  // namespace litamin2

@@ -157,8 +157,8 @@ int run(const Options& options) {
   tools::Progress progress("odometry", last - first);
   const auto start = std::chrono::steady_clock::now();
   for (std::size_t i = first; i < last; ++i) {
-    // The scan's stamp: times.txt as litamin2-replay stamps it, so that litamin2d deskews the
-    // same numbers.
+    // The scan's stamp: times.txt as litamin2-replay stamps it, so that litamin2d predicts and
+    // deskews with the same numbers (0.1 s steps without times.txt).
     const SweepTiming timing{Stamp::from_seconds(sequence.timestamp(i))};
     PointCloud scan;
     FrameResult frame;
@@ -168,15 +168,13 @@ int run(const Options& options) {
       if (!options.skip_bad_frames) throw;
       // A corrupt file in a long run: logged, the pose extrapolated with the last motion.
       std::fprintf(stderr, "litamin2-odometry: skipping frame %zu: %s\n", i, e.what());
-      frame = config.deskew.enabled ? tracker.skip_frame(timing) : tracker.skip_frame();
+      frame = tracker.skip_frame(timing);
       stats.add_skipped(i, sequence.path(i), e.what());
       if (loop_closure) loop_closure->add(tracker, frame, timing.stamp);
       poses.push_back(frame.pose);
       continue;
     }
-    arena.execute([&] {
-      frame = config.deskew.enabled ? tracker.process(scan, timing) : tracker.process(scan);
-    });
+    arena.execute([&] { frame = tracker.process(scan, timing); });
     stats.add(frame);
     if (loop_closure) loop_closure->add(tracker, frame, Stamp::from_seconds(sequence.timestamp(i)));
     poses.push_back(frame.pose);

@@ -85,17 +85,20 @@ class Tracker {
 
   /// Estimates the pose of the next scan of the stream, as it is (config.deskew is not used).
   FrameResult process(const PointCloud& scan);
-  /// The same, for a scan taken at `timing`: with config.deskew enabled, the scan's points are
+  /// The same, for a scan taken at `timing`: the constant-velocity prediction is the last
+  /// motion scaled to the time since the last scan (config.prediction; with equal intervals,
+  /// as process(scan) predicts it), and with config.deskew enabled, the scan's points are
   /// first moved to the sensor frame at the stamp by the motion within the sweep (core/
-  /// deskew.hpp), and the pose is the sensor's at the stamp. Without deskew it is
-  /// process(scan), bit for bit. Throws std::invalid_argument (state unchanged) for a stamp
-  /// not after the previous one or invalid per-point times (point_times_error).
+  /// deskew.hpp), and the pose is the sensor's at the stamp. Without deskew and with equal
+  /// intervals it is process(scan), bit for bit. Throws std::invalid_argument (state unchanged) for
+  /// a stamp not after the previous one or invalid per-point times (point_times_error).
   FrameResult process(const PointCloud& scan, const SweepTiming& timing);
   /// A scan that could not be read: the pose is extrapolated by the constant velocity (the
   /// previous frame's motion is kept over the gap), nothing is registered or added to the map.
   FrameResult skip_frame();
-  /// The same for a scan taken at `timing`, which keeps a deskewing tracker's intervals in step
-  /// (throws std::invalid_argument for a stamp not after the previous one).
+  /// The same for a scan taken at `timing`: extrapolated over its interval as process(scan,
+  /// timing) predicts, which keeps a timed tracker's intervals in step (throws
+  /// std::invalid_argument for a stamp not after the previous one).
   FrameResult skip_frame(const SweepTiming& timing);
   /// Forgets the last stamp, so that the next timed scan may have any stamp (a restarted
   /// publisher's clock); the motion is kept. The first scan after it is deskewed with the
@@ -140,6 +143,9 @@ class Tracker {
   /// Checks that `timing` follows the last stamp; returns the interval since, seconds (0 for
   /// the first).
   double interval_to(const SweepTiming& timing) const;
+  /// The factor the last motion is scaled by to predict a scan `interval` seconds after the
+  /// last one (PredictionConfig); 1 when off, before two frames, or for an equal interval.
+  double prediction_scale(double interval) const;
   /// Before the first scan: applies `sensor: auto`'s preset, then the pending seed (if any).
   void prepare_first_scan(const PointCloud& raw);
   void apply_seed(const TrackerSeed& seed);
@@ -176,6 +182,9 @@ class Tracker {
   bool has_stamp_ = false;
   Stamp last_stamp_;
   double last_interval_ = 0.0;
+  /// The constant-velocity prediction's scale for the scan being processed: its interval over
+  /// the one `velocity_` spans (1 without timing).
+  double motion_scale_ = 1.0;
   std::vector<float> azimuth_times_;
   PointCloud deskewed_;
   /// The first scan as measured and its times, until the second scan's motion deskews it in

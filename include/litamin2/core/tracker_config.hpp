@@ -27,6 +27,17 @@ struct KeyframeConfig {
   double angle_deg = 5.0;
 };
 
+/// The constant-velocity prediction of each scan's pose (added to LiTAMIN2; core/motion_model.hpp).
+struct PredictionConfig {
+  /// For a timed scan (Tracker::process(scan, timing), as litamin2d and litamin2-odometry
+  /// run), the last frame's motion is scaled to the time since the last scan: a scan after
+  /// dropped files is predicted as far as the vehicle went, not one frame's motion on. At most
+  /// this many times the last motion (a long gap is not extrapolated without bound; the
+  /// recovery's global search handles breaks); 0: off, the last motion as it is (untimed
+  /// process(scan) always predicts so).
+  double max_interval_ratio = 5.0;
+};
+
 /// Recovery when the constant-velocity prediction is wrong (frames dropped or irregularly
 /// spaced, docs/accuracy.md "Sparse sensors"): registration converges near where it starts, so a
 /// scan that fits the map badly from the prediction is registered again from other starts.
@@ -78,6 +89,7 @@ struct TrackerConfig {
   RegistrationConfig registration;
   /// When the map is updated.
   KeyframeConfig keyframe;
+  PredictionConfig prediction;
   /// Other starts when the prediction fits badly.
   RecoveryConfig recovery;
   /// Dotted keys set explicitly (by a config file or a command-line option): a sensor preset
