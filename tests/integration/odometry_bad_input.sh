@@ -31,7 +31,13 @@ expect bad-mapper-value 2 "verification.min_fitness: 2 is out of range" -- \
   "$odo" --loop-closure --mapper-config "$work/mapper.yaml" -o "$work/out" "$work/seq"
 expect missing-mapper-config 2 "nope.yaml" -- \
   "$odo" --loop-closure --mapper-config "$work/nope.yaml" -o "$work/out" "$work/seq"
+# Stamps (times.txt) that do not increase: the tracker predicts with the time between scans.
+mkdir -p "$work/stamps/velodyne"
+head -c 1600 /dev/zero > "$work/stamps/velodyne/000000.bin"
+cp "$work/stamps/velodyne/000000.bin" "$work/stamps/velodyne/000001.bin"
+printf '0.5\n0.5\n' > "$work/stamps/times.txt"
+expect repeated-stamp 1 "stamp 500000000 ns is not after the previous" -- "$odo" -o "$work/out" "$work/stamps"
 "$odo" --help | grep -q -- "--voxel-size" || { echo "FAIL help"; failures=$((failures + 1)); }
 "$odo" --help | grep -q -- "--loop-closure" || { echo "FAIL help"; failures=$((failures + 1)); }
-echo "$((10 - failures)) passed, $failures failed"
+echo "$((11 - failures)) passed, $failures failed"
 [ "$failures" -eq 0 ]
