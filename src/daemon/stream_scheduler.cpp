@@ -1,5 +1,6 @@
 #include "litamin2/daemon/stream_scheduler.hpp"
 
+#include <pthread.h>
 #include <tbb/info.h>
 
 #include <algorithm>
@@ -64,6 +65,9 @@ void StreamScheduler::stop_workers() {
 }
 
 void StreamScheduler::work() {
+  // Named so that per-thread CPU (top -H, /proc/PID/task) tells the workers from Fast DDS's
+  // threads (tests/integration/daemon_bench.sh splits the daemon's CPU by it).
+  pthread_setname_np(pthread_self(), "stream-worker");
   for (;;) {
     Stream* s = nullptr;
     {
