@@ -1,22 +1,10 @@
 #include "litamin2/daemon/stream_scheduler.hpp"
 
+#include <pthread.h>
 #include <tbb/info.h>
 
 #include <algorithm>
 #include <stdexcept>
-
-// ThreadSanitizer cannot see the synchronisation inside the (uninstrumented) libtbb between
-// the thread that enqueues a task and the worker that runs it; these annotations tell it that
-// everything before the enqueue happens before the task's body.
-#if defined(__SANITIZE_THREAD__)
-extern "C" void __tsan_acquire(void* address);
-extern "C" void __tsan_release(void* address);
-#define LITAMIN2_TSAN_RELEASE(p) __tsan_release(p)
-#define LITAMIN2_TSAN_ACQUIRE(p) __tsan_acquire(p)
-#else
-#define LITAMIN2_TSAN_RELEASE(p) ((void)(p))
-#define LITAMIN2_TSAN_ACQUIRE(p) ((void)(p))
-#endif
 
 namespace litamin2::daemon {
 
@@ -45,20 +33,52 @@ StreamScheduler::StreamScheduler(int threads, std::size_t queue_depth)
     : threads_(threads > 0 ? threads : tbb::info::default_concurrency()),
       queue_depth_(queue_depth) {
   if (queue_depth_ == 0) throw std::invalid_argument("StreamScheduler: queue depth must be >= 1");
-  // TBB starts (cores - 1) workers by default; the arena's slots are all for workers (no thread
-  // joins it: listeners only enqueue), so allow one worker per requested thread.
-  const int wanted = threads_ + 1;
-  if (static_cast<std::size_t>(wanted) >
-      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))
-    parallelism_ =
-        std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, wanted);
-  arena_.initialize(threads_, 0);
+  // Every slot is reserved for the workers below, which join the arena for each frame: oneTBB
+  // starts no worker threads for it.
+  arena_.initialize(threads_, static_cast<unsigned>(threads_));
+  workers_.reserve(static_cast<std::size_t>(threads_));
+  try {
+    for (int i = 0; i < threads_; ++i) workers_.emplace_back([this] { work(); });
+  } catch (...) {
+    stop_workers();
+    throw;
+  }
 }
 
 StreamScheduler::~StreamScheduler() {
   drain(std::chrono::milliseconds(0), std::chrono::milliseconds(0));
-  std::unique_lock lock(tasks_mutex_);
-  tasks_done_.wait(lock, [&] { return active_tasks_ == 0; });
+  {
+    std::unique_lock lock(tasks_mutex_);
+    tasks_done_.wait(lock, [&] { return active_tasks_ == 0; });
+  }
+  stop_workers();
+}
+
+void StreamScheduler::stop_workers() {
+  {
+    std::lock_guard lock(ready_mutex_);
+    stopping_ = true;
+  }
+  ready_cv_.notify_all();
+  for (std::thread& worker : workers_)
+    if (worker.joinable()) worker.join();
+}
+
+void StreamScheduler::work() {
+  // Named so that per-thread CPU (top -H, /proc/PID/task) tells the workers from Fast DDS's
+  // threads (tests/integration/daemon_bench.sh splits the daemon's CPU by it).
+  pthread_setname_np(pthread_self(), "stream-worker");
+  for (;;) {
+    Stream* s = nullptr;
+    {
+      std::unique_lock lock(ready_mutex_);
+      ready_cv_.wait(lock, [&] { return stopping_ || !ready_.empty(); });
+      if (ready_.empty()) return;  // stopping, and nothing left to run
+      s = ready_.front();
+      ready_.pop_front();
+    }
+    arena_.execute([&] { run(*s); });
+  }
 }
 
 StreamScheduler::Handle StreamScheduler::add_stream(std::string id, Processor processor) {
@@ -88,12 +108,14 @@ void StreamScheduler::schedule(Stream& s) {
     std::lock_guard lock(tasks_mutex_);
     ++active_tasks_;
   }
-  LITAMIN2_TSAN_RELEASE(&s);
-  arena_.enqueue([this, &s] { run(s); });
+  {
+    std::lock_guard lock(ready_mutex_);
+    ready_.push_back(&s);
+  }
+  ready_cv_.notify_one();
 }
 
 void StreamScheduler::run(Stream& s) {
-  LITAMIN2_TSAN_ACQUIRE(&s);
   if (std::optional<Frame> frame = s.queue.pop()) {
     s.busy_since.store(to_ns(std::chrono::steady_clock::now()));
     try {
@@ -110,7 +132,7 @@ void StreamScheduler::run(Stream& s) {
     }
     s.busy_since.store(0);
   }
-  // One frame per task, then to the back of the arena's queue, so streams take turns. A frame
+  // One frame per task, then to the back of the ready queue, so streams take turns. A frame
   // pushed between the pop above and this store is seen by one of the two checks below.
   s.scheduled.store(false);
   if (!s.queue.empty() && !s.scheduled.exchange(true)) schedule(s);

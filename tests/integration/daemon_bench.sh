@@ -25,7 +25,12 @@
 #                tracking_cpu_ms_per_frame (its trackers' thread CPU in Tracker::process, from
 #                the daemon's status), dds_path_cpu_ms_per_frame (their difference: taking,
 #                deserialising, converting, publishing) and dds_path_share_of_tracking, all from
-#                one run; offline_cpu_ms_per_frame (the offline tool's wall time per frame, 1
+#                one run; daemon_threads_cpu_ms_per_frame (the same CPU split by thread:
+#                stream_worker = tracking + publishing, main, other = Fast DDS's receive and
+#                event threads); worker_run_delay_ms_per_frame (the workers' time waiting for
+#                a core while runnable, schedstat); with PIN=1
+#                other_processes_share_of_daemon_core (CPU 1's busy time not the daemon's, over
+#                the wall time: other load that delays the daemon's frames); offline_cpu_ms_per_frame (the offline tool's wall time per frame, 1
 #                thread, for comparison)
 #   SEARCH=1     find the largest stream count with 0 dropped and p99 < P99_MS (default 20):
 #                doubles from STREAMS until a run fails, then bisects; each run's JSON in
@@ -69,6 +74,27 @@ import json, os
 s = json.load(open('offline/stats.json'))
 n = os.path.getsize(sorted(os.scandir('seq/velodyne'), key=lambda e: e.name)[0].path) // 16
 print(s['frames_per_second'], n)")
+
+# Every thread of process $1: tid, name (comm, spaces removed), utime + stime in clock ticks.
+thread_cpu() {
+  local t
+  for t in /proc/"$1"/task/*; do
+    [ -r "$t/stat" ] || continue
+    # The name is in parentheses and may hold spaces: fields are counted after the last ')'.
+    # The time it waited on a run queue while runnable (ns, schedstat's second field).
+    local delay
+    delay=$(awk '{print $2}' "$t/schedstat" 2>/dev/null || echo 0)
+    sed -E 's/^([0-9]+) \((.*)\) /\1 \2\t/' "$t/stat" |
+      awk -F'\t' -v delay="${delay:-0}" '{split($2, f, " "); n = $1; sub(/ .*/, "", n);
+                   name = $1; sub(/^[0-9]+ /, "", name); gsub(/ /, "_", name);
+                   print n, name, f[12] + f[13], delay}'
+  done
+}
+
+# Busy ticks of CPU $1 (all processes), from /proc/stat: total minus idle and iowait.
+cpu_busy() {
+  awk -v cpu="cpu$1" '$1 == cpu {print $2 + $3 + $4 + $7 + $8 + $9}' /proc/stat
+}
 
 # One run with N streams into a fresh daemon; its figures go to run_N/result.json.
 run_once() {
@@ -124,6 +150,9 @@ run_once() {
     sleep 0.05
   done
   cpu_start=$(awk '{print $14 + $15}' /proc/$daemon_pid/stat)
+  thread_cpu "$daemon_pid" > "$dir/threads_start.txt"
+  local core_start=0 core_end=0
+  [ "${PIN:-0}" != 1 ] || core_start=$(cpu_busy 1)
   local start end
   start=$(date +%s.%N)
   wait $replay_pid || true
@@ -131,12 +160,14 @@ run_once() {
   end=$(date +%s.%N)
   local cpu_end
   cpu_end=$(awk '{print $14 + $15}' /proc/$daemon_pid/stat)
+  thread_cpu "$daemon_pid" > "$dir/threads_end.txt"
+  [ "${PIN:-0}" != 1 ] || core_end=$(cpu_busy 1)
   grep -E "^Vm(HWM|RSS)" /proc/$daemon_pid/status | tr -s ' \t' ' ' | paste -sd, - \
     > "$dir/memory.txt" || true
   kill -TERM $daemon_pid
   wait $daemon_pid || true
   python3 - "$n" "$frames" "$start" "$end" "$offline_fps" "$cpu_start" "$cpu_end" \
-    "$(getconf CLK_TCK)" "$rate" "$points_per_scan" "$dir" <<'PY'
+    "$(getconf CLK_TCK)" "$rate" "$points_per_scan" "$dir" "$daemon_pid" "$core_start" "$core_end" <<'PY'
 import json, os, re, sys
 n, frames = int(sys.argv[1]), int(sys.argv[2])
 start, end, offline_fps = map(float, sys.argv[3:6])
@@ -158,6 +189,29 @@ expected = n * frames
 daemon_ms = (cpu_end - cpu_start) / ticks * 1000.0 / processed if processed else None
 tracking_ms = tracking_s * 1000.0 / processed if processed else None
 offline_ms = 1000.0 / offline_fps
+# The daemon's CPU by thread (the same window, clock ticks): the stream workers (tracking and
+# publishing), the main thread (discovery, status), and the others (Fast DDS's receive threads:
+# taking and converting scans; its event thread: heartbeats and acknowledgements).
+def thread_ticks(path):
+    out = {}
+    for line in open(path):
+        tid, name, used, delay = line.split()
+        out[tid] = (name, float(used), float(delay))
+    return out
+t0, t1 = thread_ticks(out + "/threads_start.txt"), thread_ticks(out + "/threads_end.txt")
+pid = sys.argv[12]
+by_kind, worker_delay_ns = {}, 0.0
+for tid, (name, used, delay) in t1.items():
+    kind = "main" if tid == pid else ("stream_worker" if name == "stream-worker" else "other")
+    by_kind[kind] = by_kind.get(kind, 0.0) + used - t0.get(tid, (name, 0.0, 0.0))[1]
+    if kind == "stream_worker": worker_delay_ns += delay - t0.get(tid, (name, 0.0, 0.0))[2]
+threads_ms = {k: v / ticks * 1000.0 / processed for k, v in by_kind.items()} if processed else None
+# PIN=1: how busy the daemon's core was with other processes (its busy time minus the daemon's
+# CPU, over the wall time), and how long the workers waited for the core while they had a frame
+# to run (schedstat run delay: behind other processes or the daemon's own threads).
+core_start, core_end = float(sys.argv[13]), float(sys.argv[14])
+other_load = ((core_end - core_start) - (cpu_end - cpu_start)) / ticks / (end - start) \
+    if core_end > 0 else None
 result = {
     "streams": n, "rate_hz": rate if rate == "max" else float(rate), "points_per_scan": points,
     "frames_expected": expected, "frames_processed": processed,
@@ -168,6 +222,9 @@ result = {
     "offline_cpu_ms_per_frame": offline_ms,
     "dds_path_cpu_ms_per_frame": daemon_ms - tracking_ms if processed else None,
     "dds_path_share_of_tracking": (daemon_ms - tracking_ms) / tracking_ms if processed and tracking_ms > 0 else None,
+    "daemon_threads_cpu_ms_per_frame": threads_ms,
+    "worker_run_delay_ms_per_frame": worker_delay_ns * 1e-6 / processed if processed else None,
+    "other_processes_share_of_daemon_core": other_load,
     "wall_s": end - start,
     "input": "plain_scan" if os.environ.get("ZERO_COPY", "0") == "1" else "pointcloud2",
 }
@@ -177,7 +234,10 @@ print(f"{n} stream(s) x {frames} frames ({points} points) at {rate}: {processed}
       f"processed, {result['dropped']} dropped, latency p50 {fmt(result['latency_ms_p50'], '%.1f')} ms, "
       f"worst p99 {fmt(result['latency_ms_p99'], '%.1f')} ms; CPU per frame daemon "
       f"{fmt(daemon_ms)} ms, of it tracking {fmt(tracking_ms)} ms, DDS path "
-      f"{fmt(result['dds_path_cpu_ms_per_frame'])} ms; offline tool {offline_ms:.2f} ms a frame "
+      f"{fmt(result['dds_path_cpu_ms_per_frame'])} ms (by thread: "
+      + (", ".join(f"{k} {v:.2f}" for k, v in sorted(threads_ms.items())) if threads_ms else "-")
+      + f"); workers waited {fmt(result['worker_run_delay_ms_per_frame'])} ms a frame for the "
+      f"core, other processes used {fmt(other_load)} of it; offline tool {offline_ms:.2f} ms a frame "
       f"(wall, 1 thread); {end - start:.2f} s")
 PY
   echo "litamin2d memory at the end: $(cat "$dir/memory.txt")"

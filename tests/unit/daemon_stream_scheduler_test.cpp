@@ -5,9 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <pthread.h>
+#include <tbb/task_arena.h>
+
 #include <atomic>
 #include <condition_variable>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -126,6 +130,26 @@ TEST(StreamScheduler, StreamsRunConcurrently) {
   scheduler.submit(b, frame(0));
   EXPECT_TRUE(scheduler.drain(10s).complete);
   EXPECT_EQ(met.load(), 2);
+}
+
+TEST(StreamScheduler, FramesRunInAnArenaOfTheWorkerCount) {
+  // A frame's nested parallel_for is bounded by the scheduler's thread count, whatever the
+  // machine's core count, and runs on the scheduler's own (named) worker threads.
+  for (const int threads : {1, 3}) {
+    StreamScheduler scheduler(threads, 4);
+    std::atomic<int> concurrency{0};
+    std::string name;
+    const auto s = scheduler.add_stream("a", [&](Frame&) {
+      concurrency = tbb::this_task_arena::max_concurrency();
+      char buffer[16] = {};
+      pthread_getname_np(pthread_self(), buffer, sizeof(buffer));
+      name = buffer;
+    });
+    scheduler.submit(s, frame(0));
+    EXPECT_TRUE(scheduler.drain(10s).complete);
+    EXPECT_EQ(concurrency.load(), threads);
+    EXPECT_EQ(name, "stream-worker");
+  }
 }
 
 TEST(StreamScheduler, SlowStreamDoesNotStallOthers) {

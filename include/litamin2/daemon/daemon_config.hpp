@@ -155,7 +155,7 @@ struct DaemonConfig {
   /// The global tracker section (streams and discovered streams start from it); absent keys
   /// from daemon_tracker_defaults().
   TrackerConfig tracker = daemon_tracker_defaults();
-  /// Worker threads of the processing arena; 0 = one per core.
+  /// Worker threads of the stream scheduler (StreamScheduler); 0 = one per core.
   int threads = 0;
   /// Frames queued per stream before the oldest is dropped.
   int queue_depth = 4;

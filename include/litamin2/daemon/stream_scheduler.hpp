@@ -1,23 +1,30 @@
 #pragma once
-/// Runs the frames of many sensor streams on one oneTBB arena: each stream's frames are
-/// processed in arrival order, one at a time (a stream has at most one task in flight, which
-/// re-schedules itself while its queue is not empty); different streams run in parallel, and a
-/// frame's own nested parallel_for shares the same workers (work stealing balances both).
+/// Runs the frames of many sensor streams on `threads` worker threads of its own: each
+/// stream's frames are processed in arrival order, one at a time (a stream has at most one task
+/// in flight, which re-schedules itself at the back of the ready queue while its queue is not
+/// empty, so streams take turns); different streams run in parallel. An idle worker sleeps on a
+/// condition variable: oneTBB's workers, which ran the frames before, spin and yield for a while
+/// after every task, which on one daemon core was ~7 % of the daemon's CPU (docs/benchmarks.md,
+/// "Streams per daemon core"). A frame runs inside a oneTBB arena whose slots are all the
+/// workers' own (no oneTBB worker threads): a frame's nested parallel_for is shared with the
+/// other workers that are busy with frames (they steal its tasks while they wait in their own),
+/// and runs on its own thread when they are idle.
 
 #include "litamin2/daemon/frame.hpp"
 #include "litamin2/daemon/stream_queue.hpp"
 
-#include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <mutex>
 #include <shared_mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace litamin2::daemon {
@@ -96,14 +103,23 @@ class StreamScheduler {
 
   Stream& stream(Handle handle) const;
   void schedule(Stream& stream);
+  /// A worker thread: runs ready streams' frames until stop_workers().
+  void work();
+  void stop_workers();
   void run(Stream& stream);
   void finish_task();
   std::size_t clear_queues();
 
   int threads_;
   std::size_t queue_depth_;
-  std::unique_ptr<tbb::global_control> parallelism_;
   tbb::task_arena arena_;
+
+  /// Streams with a task to run, in the order they were scheduled.
+  std::mutex ready_mutex_;
+  std::condition_variable ready_cv_;
+  std::deque<Stream*> ready_;
+  bool stopping_ = false;
+  std::vector<std::thread> workers_;
 
   mutable std::shared_mutex streams_mutex_;
   std::vector<std::unique_ptr<Stream>> streams_;
