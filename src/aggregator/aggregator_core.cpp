@@ -35,6 +35,11 @@ AggregatorCore::AggregatorCore(const std::string& store_path, store::OpenMode mo
           options.tiles, mapper_config.map_voxel_size,
           [this](mapping::TileKey key) { return store_.load_tile(key, tiles_.geometry()); },
           options.tile_cache_bytes) {
+  // Evicted segment moments are spilled next to the store (a scratch file, unlinked at once:
+  // segment_spill.hpp), not recomputed from the keyframes each time a full pass moves them.
+  // Read-only, nothing is written beside the store.
+  if (!read_only_ && options.spill_segments)
+    tiles_.spill_segments_to(std::make_unique<mapping::SegmentSpill>(store_path + "-segments"));
   if (options.recovery == CoreOptions::Recovery::kReplay) {
     replay(progress);
   } else {

@@ -35,6 +35,13 @@ void regularize_for_terms(const RegularizerConfig& config, const Eigen::Matrix3d
                           Eigen::Matrix3d& shape_cov_inv) {
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
   eig.computeDirect(raw);
+  regularize_for_terms(config, eig, cov, shape_cov, shape_cov_inv);
+}
+
+void regularize_for_terms(const RegularizerConfig& config,
+                          const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>& eig,
+                          Eigen::Matrix3d& cov, Eigen::Matrix3d& shape_cov,
+                          Eigen::Matrix3d& shape_cov_inv) {
   const Eigen::Matrix3d& vectors = eig.eigenvectors();
   const Eigen::Vector3d icp = regularized_values(config, eig.eigenvalues(), config.min_eigen_ratio);
   const Eigen::Vector3d shape =

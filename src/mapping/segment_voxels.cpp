@@ -81,6 +81,12 @@ std::size_t SegmentVoxels::apply(const std::vector<Distribution>& distributions,
   return mismatched;
 }
 
+SegmentVoxels SegmentVoxels::of(std::vector<Voxel> voxels) {
+  SegmentVoxels out;
+  out.voxels_ = std::move(voxels);
+  return out;
+}
+
 std::size_t SegmentVoxels::bytes() const {
   return sizeof(SegmentVoxels) + voxels_.capacity() * sizeof(Voxel);
 }

@@ -99,6 +99,7 @@ void TileMap::restore(const KeyframeGraph& graph,
   if (config_.segment_keyframes > 0) {
     // Each segment's frame is its reference's fused pose (the lowest id fused); the relative
     // poses follow from the fused ones; the moments are recomputed when the segment moves.
+    for (auto& [key, segment] : segments_) moments_changed(segment);
     segments_.clear();
     segment_lru_.clear();
     stats_.segments = 0;
@@ -258,15 +259,20 @@ SegmentVoxels& TileMap::segment_voxels(Segment& segment, const SegmentKey& key,
     segment_lru_.splice(segment_lru_.begin(), segment_lru_, segment.lru);
     return *segment.voxels;
   }
-  segment.voxels = std::make_shared<SegmentVoxels>();
-  for (std::uint32_t n : segment.nodes) {
-    const Fused& f = fused_[n];
-    if (!f.fused) continue;
-    ++recomputed_keyframes_;
-    stats_.inconsistent += segment.voxels->apply(
-        *cache.get(graph.node(n).key), isometry(f.relative), geometry_.voxels.voxel_size, +1);
+  if (spill_ && segment.spilled) {
+    segment.voxels = std::make_shared<SegmentVoxels>(spill_->read(segment.spill));
+    ++stats_.segment_spill_reads;
+  } else {
+    segment.voxels = std::make_shared<SegmentVoxels>();
+    for (std::uint32_t n : segment.nodes) {
+      const Fused& f = fused_[n];
+      if (!f.fused) continue;
+      ++recomputed_keyframes_;
+      stats_.inconsistent += segment.voxels->apply(
+          *cache.get(graph.node(n).key), isometry(f.relative), geometry_.voxels.voxel_size, +1);
+    }
+    ++stats_.segment_recomputes;
   }
-  ++stats_.segment_recomputes;
   segment_lru_.push_front(key);
   segment.lru = segment_lru_.begin();
   segment.bytes = 0;
@@ -301,6 +307,7 @@ std::size_t TileMap::reconcile(Segment& segment, const SegmentKey& key, const Ke
       ++stats_.subtracted;
     }
     segment.placed = false;
+    moments_changed(segment);
     if (segment.voxels) {
       segment_lru_.erase(segment.lru);
       segment_bytes_ -= segment.bytes;
@@ -319,6 +326,7 @@ std::size_t TileMap::reconcile(Segment& segment, const SegmentKey& key, const Ke
     segment.placed = true;
     segment.reference = ref;
     segment.frame = top(graph.node(ref).pose);
+    moments_changed(segment);
     segment.voxels = std::make_shared<SegmentVoxels>();
     segment_lru_.push_front(key);
     segment.lru = segment_lru_.begin();
@@ -354,6 +362,7 @@ std::size_t TileMap::reconcile(Segment& segment, const SegmentKey& key, const Ke
     }
     if (!frame_moved && changed.empty()) return done;
     SegmentVoxels& voxels = segment_voxels(segment, key, graph, cache);
+    if (!changed.empty()) moments_changed(segment);
     place(voxels, segment.frame, -1, fused_count);
     std::int64_t members = fused_count;
     for (std::uint32_t n : changed) {
@@ -397,11 +406,22 @@ void TileMap::evict_segments(const SegmentKey* keep) {
     const SegmentKey key = segment_lru_.back();
     if (keep && key == *keep) break;
     Segment& segment = segments_.at(key);
+    if (spill_ && !segment.spilled) {
+      segment.spill = spill_->write(*segment.voxels, segment.spill);
+      segment.spilled = true;
+      ++stats_.segment_spill_writes;
+    }
     segment_bytes_ -= segment.bytes;
     segment.bytes = 0;
     segment.voxels.reset();
     segment_lru_.pop_back();
   }
+}
+
+void TileMap::moments_changed(Segment& segment) {
+  if (spill_) spill_->release(segment.spill);
+  segment.spill = {};
+  segment.spilled = false;
 }
 
 void TileMap::apply_moments(const std::vector<FusedMoment>& moments, int sign,
@@ -512,6 +532,7 @@ TileMapStats TileMap::stats() const {
   s.tiles_in_memory = tiles_.size();
   s.bytes_in_memory = bytes_;
   s.segment_bytes = segment_bytes_;
+  s.segment_spill_bytes = spill_ ? spill_->file_bytes() : 0;
   return s;
 }
 

@@ -97,6 +97,38 @@ void check_distribution(std::size_t index, const Eigen::Vector3d& mean, const Ei
                                 " is not in 1 .. 2^31 - 1");
 }
 
+/// check_distribution's verdict without its cost in the common case: the bounds (count, finite
+/// and bounded mean and covariance, symmetry) as value_checks.hpp tests them, and positive
+/// semi-definiteness on the closed-form eigenvalues (`eigen`: computeDirect of `cov`, which the
+/// decoder's regularisation uses too) with half the tolerance. Only a distribution that fails
+/// here (invalid, or within rounding of the boundary) goes through check_distribution, which
+/// gives the verdict and its message as before: the checks are the same, their cost is one
+/// closed-form decomposition and no message built per distribution.
+bool plainly_bounded(const Eigen::Vector3d& mean, const Eigen::Matrix3d& cov, std::int64_t count) {
+  if (count < 1 || count > std::numeric_limits<int>::max()) return false;
+  if (!mean.allFinite() || !(mean.cwiseAbs().maxCoeff() <= checks::kMaxPosition)) return false;
+  if (!cov.allFinite()) return false;
+  const double scale = cov.cwiseAbs().maxCoeff();
+  if (!(scale <= checks::kMaxCovarianceEntry)) return false;
+  return (cov - cov.transpose()).cwiseAbs().maxCoeff() <= checks::kMatrixTolerance * scale;
+}
+
+bool plainly_semi_definite(const Eigen::Vector3d& eigenvalues) {
+  const double largest = eigenvalues.cwiseAbs().maxCoeff();
+  return eigenvalues.minCoeff() >= -0.5 * checks::kMatrixTolerance * largest;
+}
+
+/// check_distribution, through the plain checks first.
+void check_distribution_fast(std::size_t index, const Eigen::Vector3d& mean,
+                             const Eigen::Matrix3d& cov, std::int64_t count) {
+  if (plainly_bounded(mean, cov, count)) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    eig.computeDirect(cov, Eigen::EigenvaluesOnly);
+    if (plainly_semi_definite(eig.eigenvalues())) return;
+  }
+  check_distribution(index, mean, cov, count);
+}
+
 /// The covariance of the stored upper triangle (xx, xy, xz, yy, yz, zz).
 Eigen::Matrix3d from_triangle(const float* t) {
   Eigen::Matrix3d c;
@@ -153,11 +185,11 @@ std::string encode_distributions(const std::vector<Distribution>& distributions)
                               c(0, 2),    c(1, 1),    c(1, 2),    c(2, 2)};
     // Checked as given (bounded, so that the conversion to float is defined) and as they will be
     // read back, in float.
-    check_distribution(k, d.mean, c, d.count);
+    check_distribution_fast(k, d.mean, c, d.count);
     float stored[9];
     for (int i = 0; i < 9; ++i) stored[i] = static_cast<float>(values[i]);
-    check_distribution(k, Eigen::Vector3f(stored[0], stored[1], stored[2]).cast<double>(),
-                       from_triangle(stored + 3), d.count);
+    check_distribution_fast(k, Eigen::Vector3f(stored[0], stored[1], stored[2]).cast<double>(),
+                            from_triangle(stored + 3), d.count);
     for (int i = 0; i < 9; ++i) put_f32(p + 4 * i, values[i]);
     put_u32(p + 36, static_cast<std::uint32_t>(d.count));
     p += kDistributionBytes;
@@ -180,8 +212,15 @@ std::vector<Distribution> decode_distributions(const void* data, std::size_t siz
     const std::uint32_t count = get_u32(p + 36);
     d.mean = Eigen::Vector3d(v[0], v[1], v[2]);
     const Eigen::Matrix3d raw = from_triangle(v + 3);
-    check_distribution(k, d.mean, raw, count);
-    regularize_for_terms(regularizer, raw, d.cov, d.shape_cov, d.shape_cov_inv);
+    // One closed-form decomposition for the check and the regularisation.
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    const bool bounded = plainly_bounded(d.mean, raw, count);
+    if (bounded) eig.computeDirect(raw);
+    if (!bounded || !plainly_semi_definite(eig.eigenvalues())) {
+      check_distribution(k, d.mean, raw, count);  // throws why, or accepts a borderline one
+      if (!bounded) eig.computeDirect(raw);
+    }
+    regularize_for_terms(regularizer, eig, d.cov, d.shape_cov, d.shape_cov_inv);
     d.count = static_cast<int>(count);
     p += kDistributionBytes;
   }

@@ -256,6 +256,47 @@ TEST(MappingTileMap, EvictedSegmentsAreRecomputedToTheSameMap) {
   expect_equals_full_rebuild(b, recomputed, config.segment_keyframes);
 }
 
+TEST(MappingTileMap, SpilledSegmentsAreReadBackToTheSameMap) {
+  // A segment cache of 0 bytes with a spill: every evicted segment's moments are written to the
+  // spill and read back when the segment moves again, never recomputed; the tiles are bit for
+  // bit those of a map that kept every segment's moments in memory (the same moments, added and
+  // subtracted in the same order).
+  Mapper a(street_config()), b(street_config());
+  TileMapConfig config;
+  config.tile_size = 20.0;
+  config.move_threshold_m = 0.05;
+  config.move_threshold_deg = 0.05;
+  TileMap kept(config, a.config().map_voxel_size);
+  config.segment_cache_mb = 0.0;
+  TileMap spilled(config, b.config().map_voxel_size);
+  const std::string path = ::testing::TempDir() + "tile_map_test-segments";
+  spilled.spill_segments_to(std::make_unique<SegmentSpill>(path));
+  run(a, kept, 2);
+  run(b, spilled, 2);
+  const TileMapStats s = spilled.stats();
+  EXPECT_EQ(s.segment_recomputes, 0u);
+  EXPECT_GT(s.segment_spill_reads, 10u);
+  EXPECT_GE(s.segment_spill_writes, s.segment_spill_reads);
+  EXPECT_GT(s.segment_spill_bytes, 0u);
+  EXPECT_EQ(s.segment_bytes, 0u);
+  EXPECT_EQ(s.inconsistent, 0u);
+  EXPECT_EQ(s.segment_placements, kept.stats().segment_placements);
+  ASSERT_EQ(spilled.index().size(), kept.index().size());
+  for (const auto& [key, summary] : kept.index()) {
+    const auto x = spilled.tile(key), y = kept.tile(key);
+    ASSERT_EQ(x->voxels().size(), y->voxels().size());
+    for (std::size_t i = 0; i < x->voxels().size(); ++i) {
+      const VoxelMoments& p = x->voxels()[i].moments;
+      const VoxelMoments& q = y->voxels()[i].moments;
+      EXPECT_EQ(x->voxels()[i].key, y->voxels()[i].key);
+      EXPECT_EQ(p.count, q.count);
+      EXPECT_EQ(p.sum, q.sum);
+      EXPECT_EQ(p.sum_sq, q.sum_sq);
+    }
+  }
+  expect_equals_full_rebuild(b, spilled, config.segment_keyframes);
+}
+
 TEST_P(MappingTileMapModes, EvictedTilesReadBackGiveTheSameMap) {
   Mapper a(street_config()), b(street_config());
   TileMapConfig config;

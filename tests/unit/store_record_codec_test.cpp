@@ -2,10 +2,13 @@
 
 #include <cstring>
 #include <limits>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "litamin2/core/covariance_regularizer.hpp"
+#include "litamin2/core/value_checks.hpp"
 #include "litamin2/core/voxel_key.hpp"
 #include "litamin2/store/record_codec.hpp"
 
@@ -145,6 +148,108 @@ TEST(StoreRecordCodec, InvalidDistributionsAreRejectedBothWays) {
   const float minus_one = -1.0f;
   std::memcpy(bytes.data() + 12, &minus_one, 4);
   EXPECT_THROW(decode_distributions(bytes.data(), bytes.size(), {}), std::invalid_argument);
+}
+
+namespace {
+
+/// One stored distribution, byte by byte (record_codec.hpp's layout), bypassing the encoder's
+/// checks: what a corrupt or foreign store row may hold.
+std::string stored_distribution(const Eigen::Vector3f& mean, const Eigen::Matrix3f& cov,
+                                std::uint32_t count) {
+  const float values[9] = {mean.x(),  mean.y(),  mean.z(),  cov(0, 0), cov(0, 1),
+                           cov(0, 2), cov(1, 1), cov(1, 2), cov(2, 2)};
+  std::string out(kDistributionBytes, '\0');
+  std::memcpy(out.data(), values, sizeof(values));  // little-endian host
+  std::memcpy(out.data() + 36, &count, 4);
+  return out;
+}
+
+}  // namespace
+
+// The decoder judges a stored distribution on the closed-form eigenvalues its regularisation
+// uses and goes through the full check only near the boundary: its verdicts and results must
+// be those of the full check (value_checks.hpp) followed by regularize_for_terms.
+TEST(StoreRecordCodec, DecodingKeepsTheFullChecksVerdictAndResult) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const RegularizerConfig config;
+  int accepted = 0, rejected = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Eigen::Matrix3d rotation =
+        Eigen::Quaterniond(Eigen::Vector4d(unit(rng), unit(rng), unit(rng), unit(rng)).normalized())
+            .toRotationMatrix();
+    const double largest = std::pow(10.0, 3.0 * unit(rng));
+    // Full rank, thin, rank one, zero, and negative smallest eigenvalues around the
+    // tolerance (1e-6 of the largest): accepted and rejected ones on both sides of it.
+    const double kinds[] = {0.3, 1e-3, 0.0, -0.2e-6, -0.7e-6, -2e-6, -1e-3};
+    const double smallest = kinds[i % 7] * largest;
+    const double middle = (i % 11 == 0) ? 0.0 : 0.5 * largest;
+    const Eigen::Matrix3d cov =
+        i % 97 == 0
+            ? Eigen::Matrix3d::Zero()
+            : Eigen::Matrix3d(rotation * Eigen::Vector3d(largest, middle, smallest).asDiagonal() *
+                              rotation.transpose());
+    const Eigen::Vector3f mean(static_cast<float>(100 * unit(rng)),
+                               static_cast<float>(100 * unit(rng)), static_cast<float>(unit(rng)));
+    const Eigen::Matrix3f stored = cov.cast<float>();
+    const std::string bytes = stored_distribution(mean, stored, 5);
+    const Eigen::Matrix3d raw = stored.cast<double>();
+    const bool valid = !checks::covariance_error<3>(raw).has_value();
+    if (!valid) {
+      EXPECT_THROW(decode_distributions(bytes.data(), bytes.size(), config), std::invalid_argument)
+          << raw;
+      ++rejected;
+      continue;
+    }
+    ++accepted;
+    const std::vector<Distribution> out = decode_distributions(bytes.data(), bytes.size(), config);
+    ASSERT_EQ(out.size(), 1u);
+    Eigen::Matrix3d expected_cov, expected_shape, expected_shape_inv;
+    regularize_for_terms(config, raw, expected_cov, expected_shape, expected_shape_inv);
+    EXPECT_EQ(out[0].mean, mean.cast<double>());
+    EXPECT_EQ(out[0].cov, expected_cov);  // bit for bit: the same decomposition
+    EXPECT_EQ(out[0].shape_cov, expected_shape);
+    EXPECT_EQ(out[0].shape_cov_inv, expected_shape_inv);
+    EXPECT_EQ(out[0].count, 5);
+  }
+  // Both verdicts were exercised, near the boundary too.
+  EXPECT_GT(accepted, 1000);
+  EXPECT_GT(rejected, 500);
+}
+
+// The encoder's checks keep their verdicts: a covariance is refused exactly when the full check
+// refuses it as given or as it would be stored (float).
+TEST(StoreRecordCodec, EncodingKeepsTheFullChecksVerdict) {
+  std::mt19937 rng(15);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int refused = 0;
+  for (int i = 0; i < 1000; ++i) {
+    const Eigen::Matrix3d rotation =
+        Eigen::Quaterniond(Eigen::Vector4d(unit(rng), unit(rng), unit(rng), unit(rng)).normalized())
+            .toRotationMatrix();
+    const double kinds[] = {1e-2, 0.0, -0.3e-6, -0.9e-6, -3e-6};
+    Distribution d;
+    d.mean = Eigen::Vector3d(10 * unit(rng), 10 * unit(rng), unit(rng));
+    d.cov = rotation * Eigen::Vector3d(2.0, 1.0, 2.0 * kinds[i % 5]).asDiagonal() *
+            rotation.transpose();
+    d.count = 7;
+    const Eigen::Matrix3d as_stored = d.cov.cast<float>().cast<double>();
+    const bool valid =
+        !checks::covariance_error<3>(d.cov) && !checks::covariance_error<3>(as_stored);
+    if (valid) {
+      EXPECT_NO_THROW(encode_distributions({d})) << d.cov;
+    } else {
+      ++refused;
+      try {
+        encode_distributions({d});
+        ADD_FAILURE() << "encoded " << d.cov;
+      } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("not positive semi-definite"), std::string::npos)
+            << e.what();
+      }
+    }
+  }
+  EXPECT_GT(refused, 100);
 }
 
 TEST(StoreRecordCodec, NanCovarianceOfAHugeTranslationNeverComesBack) {

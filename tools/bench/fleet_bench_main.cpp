@@ -69,6 +69,7 @@ struct Options {
   int tile_segment_keyframes = 10;
   int merge_confirmations = 2;
   std::size_t cache_mb = 512;
+  bool segment_spill = true;
   double full_pass_duty = 0.25;
   int poses_chunk = 0;
   unsigned seed = 1;
@@ -168,6 +169,8 @@ int main(int argc, char** argv) {
                  "place_recognition.merge_confirmations (1: two groups join at their first loop)")
       ->check(CLI::Range(1, 100));
   app.add_option("--cache-mb", o.cache_mb, "distribution cache, MB");
+  app.add_option("--segment-spill", o.segment_spill,
+                 "spill evicted tile segments' moments to a scratch file (0: recompute them)");
   app.add_option("--full-pass-duty", o.full_pass_duty, "full pass's share of a core (0 = none)");
   app.add_option("--poses-chunk", o.poses_chunk,
                  "publish.poses_chunk_keyframes (0: a stream's poses in one piece)")
@@ -202,6 +205,7 @@ int main(int argc, char** argv) {
   mapper.graph.odometry_covariance = mapping::OdometryCovariance::kDistance;
   CoreOptions core_options;
   core_options.distribution_cache_bytes = o.cache_mb << 20;
+  core_options.spill_segments = o.segment_spill;
   // The aggregator's configuration (defaults) but for the options above; no last synchronous
   // full pass at the end (the one in flight is applied).
   AggregatorConfig config;
@@ -318,7 +322,8 @@ int main(int argc, char** argv) {
           "full pass apply %.2f, tiles fuse %.2f store %.2f, publish poses %.2f summary "
           "%.2f tiles %.2f; cache misses %zu of %zu (loads %.2f); %zu candidates, %zu "
           "verified, %zu local solves refused (ran off); %zu tiles, %zu keyframes to fuse; "
-          "tile segments %zu, placements %zu, recomputed %zu, %.0f MB\n",
+          "tile segments %zu, placements %zu, recomputed %zu, spill reads %zu writes %zu "
+          "(%.0f MB file), %.0f MB\n",
           k * (in.store_s - last_in.store_s), k * (in.regularize_s - last_in.regularize_s),
           k * (mc.descriptor_search_s - last_mc.descriptor_search_s),
           k * (mc.proximity_s - last_mc.proximity_s),
@@ -332,7 +337,10 @@ int main(int argc, char** argv) {
           k * (cs.load_s - last_cache.load_s), ms.candidates - last_ms.candidates,
           ms.verified - last_ms.verified, ms.diverged, core.tiles().index().size(),
           core.map_pending(), ts.segments, ts.segment_placements - last_ts.segment_placements,
-          ts.segment_recomputes - last_ts.segment_recomputes, ts.segment_bytes / 1048576.0);
+          ts.segment_recomputes - last_ts.segment_recomputes,
+          ts.segment_spill_reads - last_ts.segment_spill_reads,
+          ts.segment_spill_writes - last_ts.segment_spill_writes,
+          static_cast<double>(ts.segment_spill_bytes) / 1048576.0, ts.segment_bytes / 1048576.0);
       const double solves = static_cast<double>(std::max<std::size_t>(local_solves, 1));
       std::fprintf(stderr,
                    "  local solves %zu: per solve %.0f keyframes, %.0f loop edges, %.1f "
@@ -542,9 +550,13 @@ int main(int argc, char** argv) {
       {"tiles", tiles},
       {"keyframes_not_fused_at_stop", map_pending},
       {"tile_segment_keyframes", o.tile_segment_keyframes},
+      {"segment_spill", o.segment_spill},
       {"tile_segments", tile_stats.segments},
       {"tile_segment_placements", tile_stats.segment_placements},
       {"tile_segment_recomputes", tile_stats.segment_recomputes},
+      {"tile_segment_spill_reads", tile_stats.segment_spill_reads},
+      {"tile_segment_spill_writes", tile_stats.segment_spill_writes},
+      {"tile_segment_spill_mb", static_cast<double>(tile_stats.segment_spill_bytes) / 1048576.0},
       {"tile_keyframe_fusions", tile_stats.added + tile_stats.subtracted},
       {"published",
        {{"pose_messages", sink.pose_messages},

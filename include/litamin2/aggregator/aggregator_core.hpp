@@ -85,6 +85,9 @@ struct CoreOptions {
   /// The map tiles, and the bytes of tiles held in memory (0 = unbounded).
   mapping::TileMapConfig tiles;
   std::size_t tile_cache_bytes = 256u << 20;
+  /// Evicted segments' moments spilled to a scratch file beside the store (segment_spill.hpp)
+  /// instead of recomputed from their keyframes (never when read-only).
+  bool spill_segments = true;
 };
 
 /// What update_map() did.

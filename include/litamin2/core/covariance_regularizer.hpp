@@ -10,6 +10,7 @@
 /// The default is chosen by measurement (docs/accuracy.md).
 
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 
 namespace litamin2 {
 
@@ -36,6 +37,13 @@ void regularize_covariance(const RegularizerConfig& config, Eigen::Matrix3d& cov
 /// min_eigen_ratio) and the Cov term's shape and its inverse (clamped with
 /// shape_min_eigen_ratio). With the Plane method both use plane_epsilon.
 void regularize_for_terms(const RegularizerConfig& config, const Eigen::Matrix3d& raw,
+                          Eigen::Matrix3d& cov, Eigen::Matrix3d& shape_cov,
+                          Eigen::Matrix3d& shape_cov_inv);
+/// The same from the raw covariance's closed-form eigen-decomposition (computeDirect, with
+/// eigenvectors), when the caller has it already (the store's decoder checks the eigenvalues):
+/// identical results.
+void regularize_for_terms(const RegularizerConfig& config,
+                          const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>& eigen_of_raw,
                           Eigen::Matrix3d& cov, Eigen::Matrix3d& shape_cov,
                           Eigen::Matrix3d& shape_cov_inv);
 

@@ -56,6 +56,9 @@ class SegmentVoxels {
   /// A voxel's moments with their origin (the voxel's centre for `voxel_size`).
   static VoxelMoments moments(const Voxel& v, double voxel_size);
   bool empty() const { return voxels_.empty(); }
+  /// A segment of the given voxels (ordered by key, as voxels() gives them: segment_spill.hpp
+  /// reads a segment back from them).
+  static SegmentVoxels of(std::vector<Voxel> voxels);
   std::size_t bytes() const;
 
  private:

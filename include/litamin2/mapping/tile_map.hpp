@@ -22,8 +22,9 @@
 /// within the thresholds of its pose after the frame's and its own threshold (the frame's
 /// rotation threshold acting at the keyframe's distance from the reference, <= ~20 m for
 /// segments of 10 keyframes 2 m apart). A segment's moments are kept in a cache bounded in
-/// bytes and recomputed from its keyframes' distributions at their relative poses when
-/// evicted.
+/// bytes; when evicted they are written to the segment spill (segment_spill.hpp), if the map
+/// has one, and read back from it when the segment moves again (bit for bit what was evicted),
+/// else recomputed from its keyframes' distributions at their relative poses.
 ///
 /// Tiles are held in a cache bounded in bytes in front of a loader (the aggregator's store):
 /// tiles changed since take_changes() stay in memory (the caller persists them), the others
@@ -36,6 +37,7 @@
 #include "litamin2/mapping/distribution_cache.hpp"
 #include "litamin2/mapping/keyframe_graph.hpp"
 #include "litamin2/mapping/map_tile.hpp"
+#include "litamin2/mapping/segment_spill.hpp"
 #include "litamin2/mapping/segment_voxels.hpp"
 
 #include <Eigen/Geometry>
@@ -93,6 +95,10 @@ struct TileMapStats {
   std::size_t segment_placements = 0;
   std::size_t segment_recomputes = 0;
   std::size_t segment_bytes = 0;
+  /// Segment moments written to / read back from the spill, and the spill file's bytes.
+  std::size_t segment_spill_writes = 0;
+  std::size_t segment_spill_reads = 0;
+  std::uint64_t segment_spill_bytes = 0;
 };
 
 class TileMap {
@@ -105,6 +111,10 @@ class TileMap {
           std::size_t max_bytes = 0);
 
   const TileGeometry& geometry() const { return geometry_; }
+
+  /// Evicted segments' moments go to `spill` from now on (segment_spill.hpp), instead of being
+  /// recomputed from their keyframes when needed again.
+  void spill_segments_to(std::unique_ptr<SegmentSpill> spill) { spill_ = std::move(spill); }
 
   /// The keyframe of node `node` (KeyframeGraph numbering) may have moved or changed frame.
   void mark(std::uint32_t node);
@@ -177,6 +187,9 @@ class TileMap {
     std::size_t bytes = 0;
     std::list<SegmentKey>::iterator lru;
     std::uint64_t generation = 0;
+    /// Where the spill holds the moments, and whether those are the current ones.
+    SegmentSpill::Slot spill;
+    bool spilled = false;
   };
   struct Entry {
     std::shared_ptr<MapTile> tile;
@@ -213,6 +226,8 @@ class TileMap {
   void apply_moments(const std::vector<FusedMoment>& moments, int sign, std::int64_t keyframes);
   void changed_node(std::uint32_t n);
   void evict_segments(const SegmentKey* keep);
+  /// The segment's moments changed (or were dropped): the spill's copy is stale.
+  void moments_changed(Segment& segment);
 
   TileMapConfig config_;
   TileGeometry geometry_;
@@ -248,6 +263,7 @@ class TileMap {
   /// Keyframes fused again to recompute evicted segments' moments, since construction.
   std::size_t recomputed_keyframes_ = 0;
   std::uint64_t generation_ = 0;
+  std::unique_ptr<SegmentSpill> spill_;
 };
 
 }  // namespace litamin2::mapping
