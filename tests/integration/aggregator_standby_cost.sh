@@ -12,9 +12,11 @@
 # crosses lo, as it would cross the network between hosts; unicast discovery, no multicast).
 # Per run, over the window from the first patch to the aggregators going quiet (CPU below 2 %
 # of a core for 1 s): each aggregator's CPU (utime + stime, /proc/PID/stat), the publisher's
-# CPU, and lo's tx packets and bytes (/sys/class/net/lo/statistics: every datagram between
+# CPU, and lo's tx packets and bytes (/proc/net/dev: every datagram between
 # the processes, counted once); the keyframes each store holds at the end.
-# Prints one line per run and a JSON line per run ("k", "aggregator_cpu_s", ...).
+# Also the UDP payload per sender -> receiver (tcpdump of lo's headers; each port attributed to
+# its process with ss -ulpn). Prints one line per run and a JSON line per run ("k",
+# "aggregator_cpu_s", ...).
 # Usage: aggregator_standby_cost.sh BUILD_DIR WORK_DIR (env STREAMS=10 DISTRIBUTIONS=3000
 #   DURATION=30 RUNS=2 SCENE=1)
 set -euo pipefail
@@ -73,8 +75,36 @@ XML
 profile=$PWD/udp_lo.xml:litamin2
 
 ticks() { awk '{print $14 + $15}' "/proc/$1/stat"; }
-lo() { cat "/sys/class/net/lo/statistics/$1"; }
+# lo's transmit counters from /proc/net/dev (this namespace's; /sys/class/net shows the
+# namespace sysfs was mounted in): lo tx_packets | lo tx_bytes
+lo() {
+  awk -v f="$1" '$1 == "lo:" {print (f == "tx_packets" ? $11 : $10)}' /proc/net/dev
+}
 hz=$(getconf CLK_TCK)
+
+traffic_matrix() {  # traffic_matrix DIR "PID=ROLE ...": UDP payload MB and datagrams per
+  # sender -> receiver from DIR/lo.pcap; a port is its owner's (DIR/sockets.txt), a process not
+  # in the list is the publisher
+  tcpdump -r "$1/lo.pcap" -nn -q 2>/dev/null | python3 -c '
+import collections, re, sys
+roles = dict(r.split("=") for r in sys.argv[2].split())
+owner = {}
+for line in open(sys.argv[1] + "/sockets.txt"):
+    m = re.search(r":(\d+)\s.*pid=(\d+)", line)
+    if m:
+        owner[m.group(1)] = roles.get(m.group(2), "publisher")
+sums = collections.defaultdict(lambda: [0, 0])
+for line in sys.stdin:
+    m = re.search(r"\.(\d+) > [\d.]+\.(\d+): UDP, length (\d+)", line)
+    if not m:
+        continue
+    key = (owner.get(m.group(1), "?"), owner.get(m.group(2), "?"))
+    sums[key][0] += int(m.group(3))
+    sums[key][1] += 1
+for (a, b), (n, d) in sorted(sums.items(), key=lambda kv: -kv[1][0]):
+    print(f"{a} -> {b}: {n / 1e6:.2f} MB, {d} datagrams")
+' "$1" "$2"
+}
 
 one_run() {  # one_run K RUN
   local k=$1 dir="k$1_run$2" names=(a) strengths=(2) p
@@ -92,7 +122,10 @@ YAML
     pids+=("$!")
   done
   for i in "${!names[@]}"; do
-    for _ in $(seq 1 200); do grep -q "DDS participant up" "$dir/${names[$i]}.log" && break; sleep 0.05; done
+    for _ in $(seq 1 200); do
+      grep -q "DDS participant up" "$dir/${names[$i]}.log" 2>/dev/null && break
+      sleep 0.05
+    done
   done
   local stream_args=() s
   for s in $(seq 0 $((streams - 1))); do stream_args+=(--stream "$(printf 's%03d' "$s")"); done
@@ -106,6 +139,14 @@ YAML
   pids+=("$tiles_pid")
   sleep 2  # discovery
   local c0=() c1=() t0 t1 pk0 by0 pk1 by1 pub_cpu
+  # The datagrams' headers on lo (tcpdump), and which process owns which UDP port (ss, a few
+  # seconds into the publishing, when every socket exists): the bytes per sender -> receiver.
+  tcpdump -i lo -nn -q -s 96 -w "$dir/lo.pcap" udp > "$dir/tcpdump.log" 2>&1 &
+  local tcpdump_pid=$!
+  pids+=("$tcpdump_pid")
+  (sleep 5; ss -ulpn > "$dir/sockets.txt") &
+  local ss_pid=$!
+  sleep 1
   for p in "${agg_pids[@]}"; do c0+=("$(ticks "$p")"); done
   pk0=$(lo tx_packets)
   by0=$(lo tx_bytes)
@@ -138,6 +179,13 @@ YAML
   pk1=$(lo tx_packets)
   by1=$(lo tx_bytes)
   t1=$(date +%s.%N)
+  kill -INT "$tcpdump_pid" 2>/dev/null || true
+  wait "$tcpdump_pid" 2>/dev/null || true
+  wait "$ss_pid" || true
+  local roles
+  roles="${agg_pids[0]}=aggregator_A $poses_pid=poses_reader $tiles_pid=tiles_reader"
+  [ "$k" -eq 2 ] && roles+=" ${agg_pids[1]}=aggregator_B"
+  traffic_matrix "$dir" "$roles" > "$dir/traffic.txt"
   kill -TERM "$poses_pid" "$tiles_pid" 2>/dev/null || true
   wait "$poses_pid" 2>/dev/null || true
   wait "$tiles_pid" 2>/dev/null || true
@@ -153,6 +201,7 @@ YAML
   wall=$(echo "$t1 - $t0" | bc -l | awk '{printf "%.1f", $1}')
   cpu=$(echo "scale=2; $total / $hz" | bc)
   mb=$(echo "($by1 - $by0) / 1000000" | bc -l | awk '{printf "%.1f", $1}')
+  sed "s/^/  /" "$dir/traffic.txt"
   echo "k=$k run $2: aggregator CPU ${cpu} s (${cpu_each[*]}) over ${wall} s; publisher CPU" \
     "$pub_cpu s; lo $((pk1 - pk0)) datagrams, $mb MB; keyframes stored ${stored[*]}"
   printf '{"k": %d, "run": %d, "aggregator_cpu_s": %s, "publisher_cpu_s": %s, "window_s": %s, "lo_datagrams": %d, "lo_mb": %s, "stored": "%s"}\n' \

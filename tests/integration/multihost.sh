@@ -6,8 +6,9 @@
 #   aggregator 10.77.0.3  litamin2-aggregator and the test's odometry subscriber (daemon_probe)
 # Every participant uses a Fast DDS XML profile with UDPv4 only (no shared memory: processes
 # of different "hosts" must not meet through /dev/shm), bound to its host's address, unicast
-# discovery to the three addresses, no multicast locators. Everything made here (namespaces,
-# processes) is removed on exit.
+# discovery to the three addresses, no multicast locators (MAX_MESSAGE_SIZE, when set, bounds
+# their UDP datagrams: maxMessageSize). Everything made here (namespaces, processes, the
+# delay scenario's TAP devices) is removed on exit.
 #
 # Scenarios (SCENARIOS, default all of them, in this order):
 #   chain     one daemon (vehicle host), two streams, the aggregator across the network: every
@@ -34,7 +35,8 @@
 #   linkcut   one daemon (vehicle host) and the aggregator: the aggregator host's link is cut
 #             (ip link set down on its bridge port) for OUTAGE_S (default 5) seconds during
 #             ingest, then healed; then the same link gets netem loss 10 % and 100 ms delay for
-#             the rest of the run if the kernel has sch_netem. Measured: keyframes published
+#             the rest of the run if the kernel has sch_netem (where it has not, scenario delay
+#             emulates the delay in userspace). Measured: keyframes published
 #             (the daemon's status) and stored, keyframes_lost_link_cut (target 0: the outage is
 #             shorter than outputs.map_patch_history), odometry messages the vehicle host got
 #             during the outage (the daemon keeps processing), the daemon's RSS growth over the
@@ -58,10 +60,12 @@
 #             userspace link instead of its veth (this kernel has no sch_netem, so tc cannot
 #             delay): tests/link_emulator owns a TAP device in the bridge namespace (a port of
 #             br0) and one in the aggregator namespace (10.77.0.3, the veth's MAC) and forwards
-#             every frame both ways after DELAY_MS (default 100 ms each way), dropping
-#             DELAY_LOSS_PERCENT (default 0) at random. Measured: rtt_ms_delay100 (median TCP
-#             SYN -> RST round trip from the aggregator host to the vehicle host; must be >= 95 %
-#             of 2 x DELAY_MS, or the delay was not in effect) and keyframes_lost_delay100
+#             every frame both ways after DELAY_MS (default 100 ms each way; +- DELAY_JITTER_MS,
+#             default 0, which reorders), dropping DELAY_LOSS_PERCENT (default 0) at random (with
+#             loss, set MAX_MESSAGE_SIZE=1400: see docs/deploy.md). Measured: rtt_ms_delay100
+#             (median TCP SYN -> RST round trip from the aggregator host to the vehicle host; must
+#             be >= 95 % of 2 x (DELAY_MS - DELAY_JITTER_MS), or the delay was not in effect) and
+#             keyframes_lost_delay100
 #             (target 0). Checked as the chain (every odometry message in order at the
 #             aggregator host, every keyframe stored), plus each stream's odometry arriving at
 #             >= 90 % of RATE; its lag spread (max - min of arrival - stamp) is printed.
@@ -147,7 +151,9 @@ ds_port=11811
 ds_prefix="44.53.00.5f.45.50.52.4f.53.49.4d.41"
 profile_xml() {  # profile_xml HOST [client] > FILE: simple discovery by unicast peers, or a
   # Discovery Server client of the server on the aggregator host
-  local own=${addr[$1]} peers="" h discovery=""
+  local own=${addr[$1]} peers="" h discovery="" max_message=""
+  # MAX_MESSAGE_SIZE: the largest RTPS datagram (Fast DDS's default 65500 is IP-fragmented).
+  [ -n "${MAX_MESSAGE_SIZE:-}" ] && max_message="<maxMessageSize>$MAX_MESSAGE_SIZE</maxMessageSize>"
   for h in "${hosts[@]}"; do
     peers+="<locator><udpv4><address>${addr[$h]}</address></udpv4></locator>"
   done
@@ -181,6 +187,7 @@ profile_xml() {  # profile_xml HOST [client] > FILE: simple discovery by unicast
         <sendBufferSize>4194304</sendBufferSize>
         <receiveBufferSize>4194304</receiveBufferSize>
         <maxInitialPeersRange>8</maxInitialPeersRange>
+        $max_message
         <interfaceWhiteList><address>$own</address></interfaceWhiteList>
       </transport_descriptor>
     </transport_descriptors>
@@ -690,13 +697,13 @@ scenario_loss() {
 # veth's MAC, so the other hosts' neighbour entries stay right), forwarded both ways after
 # DELAY_MS by tests/link_emulator (userspace: this kernel has no sch_netem). The veth is down
 # meanwhile. link_via_veth undoes it.
-link_via_emulator() {  # link_via_emulator DIR DELAY_MS LOSS_PERCENT: sets $emulator_pid
+link_via_emulator() {  # link_via_emulator DIR DELAY_MS LOSS_PERCENT JITTER_MS: sets $emulator_pid
   local dir=$1 mac
   mac=$(ip -n "$(ns aggregator)" -o link show eth0 | grep -o 'link/ether [0-9a-f:]*' | awk '{print $2}')
   rm -f "$dir/emulator.ready"
   start bridge "$dir/emulator.log" "$link_emulator" --tap-a t_aggregator --tap-b tap0 \
     --netns-b "/run/netns/$(ns aggregator)" --delay-ms "$2" --loss-percent "$3" \
-    --ready-file "$dir/emulator.ready"
+    --jitter-ms "$4" --ready-file "$dir/emulator.ready"
   emulator_pid=$last_pid
   for _ in $(seq 1 50); do [ -f "$dir/emulator.ready" ] && break; sleep 0.1; done
   [ -f "$dir/emulator.ready" ] || { cat "$dir/emulator.log"; fail "delay: the link emulator did not start"; return 1; }
@@ -747,11 +754,12 @@ PY
 scenario_delay() {
   # The chain's files in $work/delay, the emulator's in $work/delay_link.
   local dir="$work/delay" link_dir="$work/delay_link" delay_ms=${DELAY_MS:-100}
-  local loss=${DELAY_LOSS_PERCENT:-0}
+  local loss=${DELAY_LOSS_PERCENT:-0} jitter_ms=${DELAY_JITTER_MS:-0}
   rm -rf "$link_dir"
   mkdir -p "$link_dir"
-  log "delay: the aggregator host's link through tests/link_emulator, $delay_ms ms each way, loss $loss %"
-  link_via_emulator "$link_dir" "$delay_ms" "$loss" || return 0
+  log "delay: the aggregator host's link through tests/link_emulator, $delay_ms ms each way" \
+    "(jitter $jitter_ms ms), loss $loss %"
+  link_via_emulator "$link_dir" "$delay_ms" "$loss" "$jitter_ms" || return 0
   local rtt
   rtt=$(rtt_ms aggregator vehicle || echo null)
   echo "  round trip aggregator host -> vehicle host: $rtt ms (TCP SYN -> RST, median of 5)"
@@ -761,8 +769,8 @@ scenario_delay() {
   sed 's/^/  /' "$link_dir/emulator.log"
   result[rtt_ms_delay100]=$rtt
   result[keyframes_lost_delay100]=$((chain_published - chain_stored))
-  awk -v r="$rtt" -v d="$delay_ms" 'BEGIN {exit !(r != "null" && r >= 2 * d * 0.95)}' ||
-    fail "delay: round trip $rtt ms < 2 x $delay_ms ms: the delay was not in effect"
+  awk -v r="$rtt" -v d="$delay_ms" -v j="$jitter_ms" 'BEGIN {exit !(r != "null" && r >= 2 * (d - j) * 0.95)}' ||
+    fail "delay: round trip $rtt ms < 2 x ($delay_ms - $jitter_ms) ms: the delay was not in effect"
   # The odometry at the aggregator host: its rate (messages / span between the first and the
   # last arrival) and how much its lag behind the scans' stamps varies (max - min of arrival -
   # stamp: a backlog would make it grow).
