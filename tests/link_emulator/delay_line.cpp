@@ -41,7 +41,13 @@ bool DelayLine::pop_due(Clock::time_point now, Frame& out) {
   if (queue_.empty() || queue_.top().release > now) return false;
   // priority_queue::top() is const: the frame is moved out through a const_cast of the entry
   // about to be popped, which no comparison looks at again.
-  out = std::move(const_cast<Entry&>(queue_.top()).frame);
+  Entry& entry = const_cast<Entry&>(queue_.top());
+  if (last_forwarded_ && entry.sequence < *last_forwarded_) {
+    ++counters_.reordered;
+  } else {
+    last_forwarded_ = entry.sequence;
+  }
+  out = std::move(entry.frame);
   queue_.pop();
   ++counters_.forwarded;
   counters_.bytes_forwarded += out.size();

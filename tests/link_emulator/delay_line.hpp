@@ -23,6 +23,7 @@ struct DelayLineCounters {
   std::uint64_t forwarded = 0;           // frames handed out by pop_due()
   std::uint64_t lost = 0;                // dropped at random (loss_fraction)
   std::uint64_t dropped_queue_full = 0;  // dropped: queue_limit_frames already in flight
+  std::uint64_t reordered = 0;           // forwarded after a frame that arrived later
   std::uint64_t bytes_forwarded = 0;
   std::size_t max_queued = 0;  // most frames in flight at once
 };
@@ -60,6 +61,7 @@ class DelayLine {
   std::mt19937_64 random_;
   std::priority_queue<Entry, std::vector<Entry>, LaterFirst> queue_;
   std::uint64_t next_sequence_ = 0;
+  std::optional<std::uint64_t> last_forwarded_;  // the highest sequence forwarded so far
   DelayLineCounters counters_;
 };
 

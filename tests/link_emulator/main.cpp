@@ -73,10 +73,12 @@ void print_counters(const Direction& d) {
   const auto& c = d.line.counters();
   std::fprintf(
       stderr,
-      "link_emulator: %s -> %s: received %llu forwarded %llu lost %llu queue_full %llu "
-      "write_errors %llu read_errors %llu queued_at_exit %zu bytes %llu max_queued %zu\n",
+      "link_emulator: %s -> %s: received %llu forwarded %llu reordered %llu lost %llu "
+      "queue_full %llu write_errors %llu read_errors %llu queued_at_exit %zu bytes %llu "
+      "max_queued %zu\n",
       d.from.name().c_str(), d.to.name().c_str(), static_cast<unsigned long long>(c.received),
-      static_cast<unsigned long long>(c.forwarded), static_cast<unsigned long long>(c.lost),
+      static_cast<unsigned long long>(c.forwarded), static_cast<unsigned long long>(c.reordered),
+      static_cast<unsigned long long>(c.lost),
       static_cast<unsigned long long>(c.dropped_queue_full),
       static_cast<unsigned long long>(d.write_errors),
       static_cast<unsigned long long>(d.read_errors), d.line.queued(),

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -99,6 +100,7 @@ TEST(DelayLine, WithoutJitterFramesLeaveInArrivalOrder) {
   }
   ASSERT_EQ(order.size(), 300u);
   for (std::uint32_t i = 0; i < 300; ++i) EXPECT_EQ(order[i], i);
+  EXPECT_EQ(line.counters().reordered, 0u);
   EXPECT_EQ(line.counters().max_queued, 300u);  // the first leaves at 100 ms, the last came at 99
 }
 
@@ -127,6 +129,15 @@ TEST(DelayLine, JitterStaysWithinItsBoundsAndReordersCloseFrames) {
   for (std::size_t i = 1; i < order.size(); ++i) inversions += order[i] < order[i - 1];
   // Frames 1 ms apart with +-20 ms of jitter: most neighbours swap at least once.
   EXPECT_GT(inversions, n / 4);
+  // The counter: frames that left after one that arrived later than they did.
+  std::uint32_t highest = 0;
+  std::uint64_t late = 0;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    if (i > 0 && order[i] < highest) ++late;
+    highest = std::max(highest, order[i]);
+  }
+  EXPECT_EQ(line.counters().reordered, late);
+  EXPECT_GT(late, 0u);
 }
 
 TEST(DelayLine, LossDropsAboutTheFractionAndCountsEveryFrame) {
