@@ -30,6 +30,11 @@ void unlimited(fdds::ResourceLimitsQosPolicy& limits) {
   limits.max_samples = 1'000'000'000;
 }
 
+eprosima::fastrtps::Duration_t milliseconds(std::int32_t ms) {
+  return eprosima::fastrtps::Duration_t(ms / 1000,
+                                        static_cast<std::uint32_t>(ms % 1000) * 1000000u);
+}
+
 }  // namespace
 
 fdds::DataReaderQos points_reader_qos(bool reliable, std::int32_t depth) {
@@ -77,6 +82,8 @@ fdds::DataWriterQos odom_writer_qos(std::int32_t depth) {
   fdds::DataWriterQos qos = fdds::DATAWRITER_QOS_DEFAULT;
   common(qos, fdds::RELIABLE_RELIABILITY_QOS, fdds::VOLATILE_DURABILITY_QOS,
          fdds::KEEP_LAST_HISTORY_QOS, depth);
+  // A lost message holds back the later ones until the next heartbeat gets it resent.
+  qos.reliable_writer_qos().times.heartbeatPeriod = milliseconds(kOdometryHeartbeatPeriodMs);
   return qos;
 }
 
@@ -150,10 +157,8 @@ fdds::DataWriterQos map_patches_writer_qos(std::int32_t history_per_stream) {
          fdds::KEEP_ALL_HISTORY_QOS, 1);
   unlimited(qos.resource_limits());
   qos.resource_limits().max_samples_per_instance = history_per_stream > 0 ? history_per_stream : 1;
-  // A patch lost on the link is resent when the reader's negative acknowledgment answers a
-  // heartbeat: Fast DDS's default period, 3 s, made a lost last patch wait that long (and longer
-  // than litamin2d's shutdown budget). 0.5 s: a heartbeat is a few dozen bytes.
-  qos.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, 500000000);
+  // A lost patch waits for the next heartbeat to be resent (kMapPatchHeartbeatPeriodMs).
+  qos.reliable_writer_qos().times.heartbeatPeriod = milliseconds(kMapPatchHeartbeatPeriodMs);
   return qos;
 }
 

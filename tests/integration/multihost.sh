@@ -6,10 +6,11 @@
 #   aggregator 10.77.0.3  litamin2-aggregator and the test's odometry subscriber (daemon_probe)
 # Every participant uses a Fast DDS XML profile with UDPv4 only (no shared memory: processes
 # of different "hosts" must not meet through /dev/shm), bound to its host's address, unicast
-# discovery to the three addresses, no multicast locators. Everything made here (namespaces,
-# processes) is removed on exit.
+# discovery to the three addresses, no multicast locators (MAX_MESSAGE_SIZE, when set, bounds
+# their UDP datagrams: maxMessageSize). Everything made here (namespaces, processes, the
+# delay scenario's TAP devices) is removed on exit.
 #
-# Scenarios (SCENARIOS, default "chain"):
+# Scenarios (SCENARIOS, default all of them, in this order):
 #   chain     one daemon (vehicle host), two streams, the aggregator across the network: every
 #             odometry message arrives at the aggregator host and every keyframe is stored.
 #   failover  sharding: litamin2d A (vehicle host, member vehicle-host) and B (daemon2 host,
@@ -34,7 +35,8 @@
 #   linkcut   one daemon (vehicle host) and the aggregator: the aggregator host's link is cut
 #             (ip link set down on its bridge port) for OUTAGE_S (default 5) seconds during
 #             ingest, then healed; then the same link gets netem loss 10 % and 100 ms delay for
-#             the rest of the run if the kernel has sch_netem. Measured: keyframes published
+#             the rest of the run if the kernel has sch_netem (where it has not, scenario delay
+#             emulates the delay in userspace). Measured: keyframes published
 #             (the daemon's status) and stored, keyframes_lost_link_cut (target 0: the outage is
 #             shorter than outputs.map_patch_history), odometry messages the vehicle host got
 #             during the outage (the daemon keeps processing), the daemon's RSS growth over the
@@ -54,6 +56,27 @@
 #             endpoints on topics it has endpoints on itself, so it would never see
 #             rt/<stream>/points. The aggregator's host, whose topics are fixed, is a CLIENT.
 #             Checked as the chain: every odometry message and every keyframe arrives.
+#   delay     the chain scenario with the aggregator host joined to the bridge through a
+#             userspace link instead of its veth (this kernel has no sch_netem, so tc cannot
+#             delay): tests/link_emulator owns a TAP device in the bridge namespace (a port of
+#             br0) and one in the aggregator namespace (10.77.0.3, the veth's MAC) and forwards
+#             every frame both ways after DELAY_MS (default 100 ms each way; +- DELAY_JITTER_MS,
+#             default 0, which reorders), dropping DELAY_LOSS_PERCENT (default 0) at random (with
+#             loss, set MAX_MESSAGE_SIZE=1400: see docs/deploy.md). Measured: rtt_ms_delay100
+#             (shortest of 5 TCP SYN -> RST round trips from the aggregator host to the vehicle host; must
+#             be >= 95 % of 2 x (DELAY_MS - DELAY_JITTER_MS), or the delay was not in effect) and
+#             keyframes_lost_delay100
+#             (target 0). Checked as the chain (every odometry message in order at the
+#             aggregator host, every keyframe stored), plus each stream's odometry arriving at
+#             >= 90 % of RATE; its lag spread (max - min of arrival - stamp) is printed.
+#   aggstandby  the aggregator's hot standby across hosts: aggregator A (standby.strength 2)
+#             on the aggregator host, B (strength 1) on the daemon2 host, litamin2d on the
+#             vehicle host, an exclusive reader of rt/litamin2/keyframe_poses on the vehicle
+#             host (aggregator_probe poses --exclusive). A is killed (-9) once it stored
+#             KILL_AT_KEYFRAME (default 20) keyframes. Measured: failover_aggregator_standby_s,
+#             the kill to the reader's first poses from B (bounded by the lease + 1 s, as in
+#             aggregator_standby.sh). Checked: B stores every keyframe published and its last
+#             poses cover them.
 #
 # Ends by printing one JSON line with the issue's keys; a value not measured by the scenarios
 # run is null, with the reason in the log.
@@ -65,10 +88,12 @@ mkdir -p "$2"
 work=$(cd "$2" && pwd)
 bin="$build/tools"
 probe="$build/tests/integration/daemon_probe"
+link_emulator="$build/tests/link_emulator"
+aggregator_probe="$build/tests/integration/aggregator_probe"
 frames=${FRAMES:-120}
 rate=${RATE:-10}
 domain=${DOMAIN:-47}
-scenarios=${SCENARIOS:-chain failover standby linkcut loss dserver}
+scenarios=${SCENARIOS:-chain failover standby linkcut loss dserver delay aggstandby}
 streams=(vehicle_00 vehicle_01)
 tag="lm2mh$$"
 hosts=(vehicle daemon2 aggregator)
@@ -126,7 +151,9 @@ ds_port=11811
 ds_prefix="44.53.00.5f.45.50.52.4f.53.49.4d.41"
 profile_xml() {  # profile_xml HOST [client] > FILE: simple discovery by unicast peers, or a
   # Discovery Server client of the server on the aggregator host
-  local own=${addr[$1]} peers="" h discovery=""
+  local own=${addr[$1]} peers="" h discovery="" max_message=""
+  # MAX_MESSAGE_SIZE: the largest RTPS datagram (Fast DDS's default 65500 is IP-fragmented).
+  [ -n "${MAX_MESSAGE_SIZE:-}" ] && max_message="<maxMessageSize>$MAX_MESSAGE_SIZE</maxMessageSize>"
   for h in "${hosts[@]}"; do
     peers+="<locator><udpv4><address>${addr[$h]}</address></udpv4></locator>"
   done
@@ -160,6 +187,7 @@ profile_xml() {  # profile_xml HOST [client] > FILE: simple discovery by unicast
         <sendBufferSize>4194304</sendBufferSize>
         <receiveBufferSize>4194304</receiveBufferSize>
         <maxInitialPeersRange>8</maxInitialPeersRange>
+        $max_message
         <interfaceWhiteList><address>$own</address></interfaceWhiteList>
       </transport_descriptor>
     </transport_descriptors>
@@ -281,16 +309,18 @@ stored_keyframes() {  # stored_keyframes DB [STREAM]
   sqlite3 -readonly "$1" "select count(*) from keyframes$where" 2>/dev/null || echo 0
 }
 
-start_aggregator() {  # start_aggregator DIR [EXTRA YAML LINES]: sets $aggregator_pid
+start_aggregator() {  # start_aggregator DIR [EXTRA YAML LINES [HOST]]: on HOST (default the
+  # aggregator host); sets $aggregator_pid
+  local host=${3:-aggregator}
   mkdir -p "$1"
   cat > "$1/aggregator.yaml" <<YAML
-dds: {domain: $domain, profile: xml, xml_file: $work/aggregator$xml_suffix.xml, xml_profile: litamin2}
+dds: {domain: $domain, profile: xml, xml_file: $work/$host$xml_suffix.xml, xml_profile: litamin2}
 store: {path: $1/aggregator.db}
 watchdog: {enabled: false}
 ${2:-}
 YAML
   rm -f "$1"/aggregator.db*
-  start aggregator "$1/aggregator.log" "$bin/aggregator/litamin2-aggregator" \
+  start "$host" "$1/aggregator.log" "$bin/aggregator/litamin2-aggregator" \
     --config "$1/aggregator.yaml"
   aggregator_pid=$last_pid
 }
@@ -339,7 +369,8 @@ fail() {
 declare -A result=([failover_standby_s]=null [failover_reshard_s]=null
   [keyframes_published]=null [keyframes_stored]=null [keyframes_lost_link_cut]=null
   [daemon_rss_growth_mb_outage]=null [moved_stream_ate_m]=null [keyframes_lost_loss10]=null
-  [datagrams_dropped_loss10]=null)
+  [datagrams_dropped_loss10]=null [keyframes_lost_delay100]=null [rtt_ms_delay100]=null
+  [failover_aggregator_standby_s]=null)
 declare -A why_null=(
   [failover_standby_s]="the standby scenario was not run"
   [failover_reshard_s]="the failover scenario was not run"
@@ -349,7 +380,10 @@ declare -A why_null=(
   [daemon_rss_growth_mb_outage]="the link-cut scenario was not run"
   [moved_stream_ate_m]="the failover scenario was not run"
   [keyframes_lost_loss10]="the loss scenario was not run"
-  [datagrams_dropped_loss10]="the loss scenario was not run")
+  [datagrams_dropped_loss10]="the loss scenario was not run"
+  [keyframes_lost_delay100]="the delay scenario was not run"
+  [rtt_ms_delay100]="the delay scenario was not run"
+  [failover_aggregator_standby_s]="the aggstandby scenario was not run")
 
 scenario_chain() {
   local dir="$work/${1:-chain}"
@@ -658,6 +692,186 @@ scenario_loss() {
   return 0
 }
 
+# The aggregator host's link through the test link emulator (scenario delay): a TAP device in
+# the bridge namespace (a port of br0) and one in the aggregator namespace (its address and its
+# veth's MAC, so the other hosts' neighbour entries stay right), forwarded both ways after
+# DELAY_MS by tests/link_emulator (userspace: this kernel has no sch_netem). The veth is down
+# meanwhile. link_via_veth undoes it.
+link_via_emulator() {  # link_via_emulator DIR DELAY_MS LOSS_PERCENT JITTER_MS: sets $emulator_pid
+  local dir=$1 mac
+  mac=$(ip -n "$(ns aggregator)" -o link show eth0 | grep -o 'link/ether [0-9a-f:]*' | awk '{print $2}')
+  rm -f "$dir/emulator.ready"
+  start bridge "$dir/emulator.log" "$link_emulator" --tap-a t_aggregator --tap-b tap0 \
+    --netns-b "/run/netns/$(ns aggregator)" --delay-ms "$2" --loss-percent "$3" \
+    --jitter-ms "$4" --ready-file "$dir/emulator.ready"
+  emulator_pid=$last_pid
+  for _ in $(seq 1 50); do [ -f "$dir/emulator.ready" ] && break; sleep 0.1; done
+  [ -f "$dir/emulator.ready" ] || { cat "$dir/emulator.log"; fail "delay: the link emulator did not start"; return 1; }
+  ip -n "$(ns bridge)" link set "$agg_link" down
+  ip -n "$(ns aggregator)" addr del "${addr[aggregator]}/24" dev eth0
+  ip -n "$(ns aggregator)" link set eth0 down
+  ip -n "$(ns aggregator)" link set tap0 address "$mac"
+  ip -n "$(ns aggregator)" addr add "${addr[aggregator]}/24" dev tap0
+  ip -n "$(ns aggregator)" link set tap0 up
+  ip -n "$(ns bridge)" link set t_aggregator master br0 up
+  for _ in $(seq 1 20); do
+    ip -n "$(ns aggregator)" link show tap0 | grep -q LOWER_UP && break
+    sleep 0.1
+  done
+}
+
+link_via_veth() {  # link_via_veth: the emulator stopped (its TAP devices vanish), the veth back
+  kill -TERM "$emulator_pid" 2>/dev/null || true
+  wait "$emulator_pid" || fail "delay: the link emulator exited with an error"
+  ip -n "$(ns aggregator)" link set eth0 up
+  ip -n "$(ns aggregator)" addr add "${addr[aggregator]}/24" dev eth0
+  ip -n "$(ns bridge)" link set "$agg_link" up
+  for _ in $(seq 1 20); do
+    ip -n "$(ns aggregator)" link show eth0 | grep -q LOWER_UP && break
+    sleep 0.1
+  done
+}
+
+rtt_ms() {  # rtt_ms FROM_HOST TO_HOST: the shortest of 5 TCP connects to a closed port (each
+  # one SYN out, RST back: one round trip; a lost SYN or RST makes one 1 s longer), after one that
+  # also resolves the neighbour
+  in_ns "$1" python3 - "${addr[$2]}" <<'PY'
+import socket, sys, time
+rtts = []
+for i in range(6):
+    s = socket.socket()
+    s.settimeout(5)
+    t = time.monotonic()
+    try:
+        s.connect((sys.argv[1], 9))
+    except ConnectionRefusedError:
+        pass
+    rtts.append((time.monotonic() - t) * 1000)
+    s.close()
+print(f"{min(rtts[1:]):.1f}")
+PY
+}
+
+scenario_delay() {
+  # The chain's files in $work/delay, the emulator's in $work/delay_link.
+  local dir="$work/delay" link_dir="$work/delay_link" delay_ms=${DELAY_MS:-100}
+  local loss=${DELAY_LOSS_PERCENT:-0} jitter_ms=${DELAY_JITTER_MS:-0}
+  rm -rf "$link_dir"
+  mkdir -p "$link_dir"
+  log "delay: the aggregator host's link through tests/link_emulator, $delay_ms ms each way" \
+    "(jitter $jitter_ms ms), loss $loss %"
+  link_via_emulator "$link_dir" "$delay_ms" "$loss" "$jitter_ms" || return 0
+  local rtt
+  rtt=$(rtt_ms aggregator vehicle || echo null)
+  echo "  round trip aggregator host -> vehicle host: $rtt ms (TCP SYN -> RST, shortest of 5)"
+  local before=$failures
+  scenario_chain delay
+  link_via_veth
+  sed 's/^/  /' "$link_dir/emulator.log"
+  result[rtt_ms_delay100]=$rtt
+  result[keyframes_lost_delay100]=$((chain_published - chain_stored))
+  awk -v r="$rtt" -v d="$delay_ms" -v j="$jitter_ms" 'BEGIN {exit !(r != "null" && r >= 2 * (d - j) * 0.95)}' ||
+    fail "delay: round trip $rtt ms < 2 x ($delay_ms - $jitter_ms) ms: the delay was not in effect"
+  # The odometry at the aggregator host: its rate (messages / span between the first and the
+  # last arrival) and how much its lag behind the scans' stamps varies (max - min of arrival -
+  # stamp: a backlog would make it grow).
+  local s hz spread
+  for s in "${streams[@]}"; do
+    read -r hz spread < <(awk 'NR == 1 {a0 = $1} {lag = $1 - $2; if (NR == 1 || lag < lo) lo = lag;
+      if (NR == 1 || lag > hi) hi = lag; a = $1}
+      END {printf "%.2f %.3f\n", (NR - 1) / (a - a0), hi - lo}' "$dir/arrivals_$s.txt")
+    echo "  $s: odometry at the aggregator host $hz Hz, lag spread $spread s"
+    awk -v f="$hz" -v r="$rate" 'BEGIN {exit !(f >= 0.9 * r)}' ||
+      fail "delay: $s's odometry arrived at $hz Hz (rate $rate)"
+  done
+  [ "$failures" -eq "$before" ] &&
+    echo "  delay: every keyframe stored and every odometry message at rate through a $rtt ms round trip"
+  return 0
+}
+
+scenario_aggstandby() {
+  local dir="$work/aggstandby"
+  rm -rf "$dir"
+  mkdir -p "$dir"
+  log "aggstandby: aggregator A (strength 2) on the aggregator host, B (strength 1) on the daemon2 host; kill -9 of A"
+  local standby_yaml="publish: {poses_period_s: 0.2}"
+  start_aggregator "$dir/a" "standby: {strength: 2}
+$standby_yaml" aggregator
+  local a_pid=$aggregator_pid
+  start_aggregator "$dir/b" "standby: {strength: 1}
+$standby_yaml" daemon2
+  local b_pid=$aggregator_pid
+  daemon_yaml vehicle > "$dir/daemon.yaml"
+  start vehicle "$dir/daemon.log" "$bin/litamin2d/litamin2d" --config "$dir/daemon.yaml"
+  local daemon_pid=$last_pid
+  # On the vehicle host: the odometry and status subscriber (keyframes published) and the
+  # exclusive reader of the corrected keyframe poses (one line per sample: ns, stream, count,
+  # writer). The latter is stopped at the end (its --expect is out of reach on purpose).
+  local args=() s
+  for s in "${streams[@]}"; do args+=(--stream "$s"); done
+  start vehicle "$dir/probe.log" "$probe" --domain "$domain" --profile "$work/vehicle.xml" \
+    --expect "$frames" --timeout $((frames / rate + 30)) --arrivals-out "$dir/arrivals_" "${args[@]}"
+  local probe_pid=$last_pid
+  start vehicle "$dir/poses.log" "$aggregator_probe" --domain "$domain" --profile "$work/vehicle.xml" \
+    poses --exclusive --log "$dir/samples.txt" --expect 1000000 --timeout $((frames / rate + 60)) "${args[@]}"
+  local poses_pid=$last_pid
+  replay "$dir" &
+  local replay_pid=$!
+  # The kill: once A stored KILL_AT_KEYFRAME (default 20) keyframes, mid-ingest.
+  for _ in $(seq 1 600); do
+    [ "$(stored_keyframes "$dir/a/aggregator.db")" -ge "${KILL_AT_KEYFRAME:-20}" ] && break
+    sleep 0.1
+  done
+  local kill_ns
+  kill_ns=$(date +%s%N)
+  kill -9 "$a_pid"
+  wait "$a_pid" 2>/dev/null || true
+  echo "  A killed at $(stored_keyframes "$dir/a/aggregator.db") keyframes stored"
+  local replay_rc=0 probe_rc=0
+  wait "$replay_pid" || replay_rc=$?
+  [ "$replay_rc" -eq 0 ] || fail "aggstandby: replay failed"
+  wait "$probe_pid" || probe_rc=$?
+  [ "$probe_rc" -eq 0 ] || fail "aggstandby: the vehicle host did not get every odometry message"
+  local published stored
+  published=$(status_keyframes "$dir/probe.log")
+  stored=$(wait_stored "$dir/b/aggregator.db" "$published" 30)
+  sleep 1  # B's next poses (publish.poses_period_s) after its last keyframe
+  stop "$daemon_pid" || fail "aggstandby: litamin2d exited with an error"
+  kill -TERM "$poses_pid" 2>/dev/null || true
+  wait "$poses_pid" 2>/dev/null || true
+  stop "$b_pid" || fail "aggstandby: aggregator B exited with an error"
+  echo "  keyframes: $published published, $stored stored by B"
+  [ "$published" -gt 0 ] && [ "$stored" -eq "$published" ] ||
+    fail "aggstandby: B stored $stored of $published keyframes"
+  # The writer before the kill (A's, the strongest) and the first sample of another after it.
+  local before_writer first_b_ns after_writer
+  before_writer=$(awk -v t="$kill_ns" '$1 < t {w = $4} END {print w}' "$dir/samples.txt")
+  read -r first_b_ns after_writer < <(awk -v t="$kill_ns" -v w="$before_writer" \
+    '$1 >= t && $4 != w {print $1, $4; exit}' "$dir/samples.txt")
+  if [ -z "$before_writer" ] || [ -z "${first_b_ns:-}" ]; then
+    why_null[failover_aggregator_standby_s]="no poses from A before or from B after the kill"
+    fail "aggstandby: no poses from A before the kill or none from B after it"
+    return 0
+  fi
+  local bound
+  bound=$(echo "$lease_s + 1.0" | bc -l)
+  result[failover_aggregator_standby_s]=$(echo "($first_b_ns - $kill_ns) / 1000000000" | bc -l |
+    awk '{printf "%.3f", $1}')
+  echo "  failover_aggregator_standby_s: ${result[failover_aggregator_standby_s]} (kill -9 of A to" \
+    "the first keyframe poses from B at the exclusive reader on the vehicle host; lease $lease_s s)"
+  awk -v r="${result[failover_aggregator_standby_s]}" -v b="$bound" 'BEGIN {exit !(r <= b)}' ||
+    fail "aggstandby: failover ${result[failover_aggregator_standby_s]} s > $bound s"
+  # B's last poses cover every keyframe it stored, per stream.
+  for s in "${streams[@]}"; do
+    local last in_store
+    last=$(awk -v s="$s" -v w="$after_writer" '$2 == s && $4 == w {n = $3} END {print n + 0}' "$dir/samples.txt")
+    in_store=$(stored_keyframes "$dir/b/aggregator.db" "$s")
+    echo "  $s: B's last poses $last keyframes, $in_store in its store"
+    [ "$last" -eq "$in_store" ] || fail "aggstandby: $s: B's last poses have $last of $in_store keyframes"
+  done
+  return 0
+}
+
 scenario_dserver() {
   log "dserver: the chain with discovery through a Fast DDS Discovery Server on ${addr[aggregator]}:$ds_port"
   mkdir -p "$work/dserver"
@@ -683,7 +897,7 @@ for s in $scenarios; do "scenario_$s"; done
 json="{"
 for k in failover_standby_s failover_reshard_s keyframes_published keyframes_stored \
   keyframes_lost_link_cut daemon_rss_growth_mb_outage moved_stream_ate_m keyframes_lost_loss10 \
-  datagrams_dropped_loss10; do
+  datagrams_dropped_loss10 keyframes_lost_delay100 rtt_ms_delay100 failover_aggregator_standby_s; do
   [ "${result[$k]}" = null ] && echo "  $k: null (${why_null[$k]})"
   json+="\"$k\": ${result[$k]}, "
 done

@@ -98,6 +98,25 @@ TEST(DdsParticipant, TopicQos) {
   EXPECT_EQ(status_reader_qos().reliability().kind, fdds::RELIABLE_RELIABILITY_QOS);
 }
 
+// The writers a reader waits on in order (odometry, /tf, the exclusive hot-standby odometry)
+// and the map-patch writers send heartbeats at their named periods, shorter than Fast DDS's
+// default (3 s), which is what a sample lost on the link waited for before being resent.
+TEST(DdsParticipant, RepairHeartbeatPeriods) {
+  const auto period_ms = [](const fdds::DataWriterQos& qos) {
+    const auto& period = qos.reliable_writer_qos().times.heartbeatPeriod;
+    return static_cast<double>(period.seconds) * 1e3 + static_cast<double>(period.nanosec) / 1e6;
+  };
+  const double default_ms = period_ms(fdds::DATAWRITER_QOS_DEFAULT);
+  EXPECT_DOUBLE_EQ(period_ms(odom_writer_qos()), kOdometryHeartbeatPeriodMs);
+  EXPECT_DOUBLE_EQ(period_ms(exclusive_odom_writer_qos(2)), kOdometryHeartbeatPeriodMs);
+  EXPECT_DOUBLE_EQ(period_ms(tf_writer_qos()), kOdometryHeartbeatPeriodMs);
+  EXPECT_DOUBLE_EQ(period_ms(map_patches_writer_qos(500)), kMapPatchHeartbeatPeriodMs);
+  EXPECT_LT(kOdometryHeartbeatPeriodMs, default_ms);
+  EXPECT_LT(kMapPatchHeartbeatPeriodMs, default_ms);
+  // Other writers keep the default (a status or a tile superseded by the next one).
+  EXPECT_DOUBLE_EQ(period_ms(status_writer_qos()), default_ms);
+}
+
 TEST(DdsParticipant, Ros2TypeNames) {
   EXPECT_EQ(fdds::TypeSupport(new sensor_msgs::msg::PointCloud2PubSubType()).get_type_name(),
             "sensor_msgs::msg::dds_::PointCloud2_");
