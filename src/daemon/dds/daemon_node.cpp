@@ -10,6 +10,7 @@
 #include "litamin2/daemon/stream_frames.hpp"
 #include "litamin2/daemon/stream_processor.hpp"
 #include "litamin2/dds/checked_type.hpp"
+#include "litamin2/dds/key_locked_type.hpp"
 #include "litamin2/dds/participant_setup.hpp"
 #include "litamin2/dds/pointcloud2_scan_type.hpp"
 #include "litamin2/dds/qos.hpp"
@@ -114,7 +115,9 @@ DaemonNode::DaemonNode(DaemonConfig config) : config_(std::move(config)) {
   // CDR is counted, not fatal, as with CheckedType.
   points_type_ = dds::register_type(participant_.get(), new dds::PointCloud2ScanType());
   odom_type_ = dds::register_type(participant_.get(), new nav_msgs::msg::OdometryPubSubType());
-  map_patch_type_ = dds::register_type(participant_.get(), new litamin2::msg::MapPatchPubSubType());
+  // Stream workers write map patches concurrently: the generated getKey() is not thread-safe.
+  map_patch_type_ = dds::register_type(participant_.get(),
+                                       new dds::KeyLockedType<litamin2::msg::MapPatchPubSubType>());
   status_type_ =
       dds::register_type(participant_.get(), new diagnostic_msgs::msg::DiagnosticArrayPubSubType());
 
