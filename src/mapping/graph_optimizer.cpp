@@ -41,6 +41,30 @@ struct LocalProblem {
   bool has(std::uint32_t node) const { return index.count(node) > 0; }
 };
 
+/// A set of graph nodes: a flag per node of the graph for membership (no tree to walk or
+/// allocate per insertion), the members in a list; sorted() lists them in increasing order, as
+/// a std::set would.
+class NodeSet {
+ public:
+  explicit NodeSet(std::size_t graph_size) : in_(graph_size, 0) {}
+  bool insert(std::uint32_t node) {
+    if (in_[node]) return false;
+    in_[node] = 1;
+    members_.push_back(node);
+    return true;
+  }
+  bool count(std::uint32_t node) const { return in_[node] != 0; }
+  std::size_t size() const { return members_.size(); }
+  const std::vector<std::uint32_t>& sorted() {
+    std::sort(members_.begin(), members_.end());
+    return members_;
+  }
+
+ private:
+  std::vector<char> in_;
+  std::vector<std::uint32_t> members_;
+};
+
 }  // namespace
 
 void GraphLoops::add(const LoopEdge& edge, std::uint32_t from, std::uint32_t to) {
@@ -136,7 +160,7 @@ LocalOptimization GraphOptimizer::optimize_local(KeyframeGraph& graph, GraphLoop
 
   // Free: each new loop's newer keyframe's stream, from its latest anchored keyframe before
   // it (or max_keyframes back) to the end (or max_keyframes on).
-  std::set<std::uint32_t> free;
+  NodeSet free(graph.size());
   for (std::uint32_t i : pending) {
     const KeyframeNode& b = graph.node(loops.nodes[i].second);
     const auto& chain = groups.at(b.stream).nodes;
@@ -167,7 +191,8 @@ LocalOptimization GraphOptimizer::optimize_local(KeyframeGraph& graph, GraphLoop
       held.push_back(older);
     frontier.push_back(loops.nodes[i].second);
   }
-  std::set<std::uint32_t> seen(frontier.begin(), frontier.end());
+  NodeSet seen(graph.size());
+  for (std::uint32_t n : frontier) seen.insert(n);
   for (int hop = 0; hop <= config_.graph.local_hops && !frontier.empty(); ++hop) {
     std::vector<std::uint32_t> next;
     for (std::uint32_t n : frontier) {
@@ -178,7 +203,7 @@ LocalOptimization GraphOptimizer::optimize_local(KeyframeGraph& graph, GraphLoop
       const auto& chain = groups.at(node.stream).nodes;
       const auto at = chain.find(node.key.id);
       auto visit = [&](std::uint32_t m) {
-        if (seen.insert(m).second) next.push_back(m);
+        if (seen.insert(m)) next.push_back(m);
       };
       if (at != chain.begin()) visit(std::prev(at)->second);
       if (std::next(at) != chain.end()) visit(std::next(at)->second);
@@ -194,9 +219,10 @@ LocalOptimization GraphOptimizer::optimize_local(KeyframeGraph& graph, GraphLoop
 
   // The problem: free nodes, then every node an edge ties them to, fixed.
   LocalProblem problem;
-  for (std::uint32_t n : free) problem.add(n, false);
+  const std::vector<std::uint32_t>& free_nodes = free.sorted();
+  for (std::uint32_t n : free_nodes) problem.add(n, false);
   std::vector<PoseGraphEdge> edges;
-  for (std::uint32_t n : free) {
+  for (std::uint32_t n : free_nodes) {
     const KeyframeNode& node = graph.node(n);
     const auto& chain = groups.at(node.stream).nodes;
     const auto at = chain.find(node.key.id);
@@ -219,7 +245,7 @@ LocalOptimization GraphOptimizer::optimize_local(KeyframeGraph& graph, GraphLoop
   }
   out.odometry_edges = static_cast<int>(edges.size());
   std::set<std::uint32_t> loop_ids(pending.begin(), pending.end());
-  for (std::uint32_t n : free) {
+  for (std::uint32_t n : free_nodes) {
     const auto it = loops.at_node.find(n);
     if (it != loops.at_node.end()) loop_ids.insert(it->second.begin(), it->second.end());
   }

@@ -97,23 +97,39 @@ PoseGraphResult optimize_pose_graph(std::vector<Eigen::Isometry3d>& poses,
     t[i] = poses[i].translation();
   }
 
+  // One allocation per edge, not three: the functors live in one array, each cost function
+  // holds its functor without owning it, and the cost functions live in another array that the
+  // problem does not own either. Every level prior shares one cost function and every robust
+  // edge one loss (same sigma, same scale; Ceres allows a cost or loss function in several
+  // residual blocks). The residual blocks, their order and their values are those of one cost
+  // and loss function per block: the solve is the same, bit for bit.
+  using EdgeCost = ceres::AutoDiffCostFunction<RelativePoseError, 6, 4, 3, 4, 3>;
+  using LevelCost = ceres::AutoDiffCostFunction<LevelPrior, 2, 4>;
+  std::vector<RelativePoseError> edge_functors;
+  edge_functors.reserve(edges.size());
+  std::vector<EdgeCost> edge_costs;
+  edge_costs.reserve(edges.size());
+  const double level_sigma = config.level_prior_sigma_deg * M_PI / 180.0;
+  LevelPrior level_functor(level_sigma > 0.0 ? level_sigma : 1.0);
+  LevelCost level_cost(&level_functor, ceres::DO_NOT_TAKE_OWNERSHIP);
+  ceres::CauchyLoss loop_loss(config.loop_loss_scale);
+  ceres::EigenQuaternionManifold quaternion_manifold;
+
   ceres::Problem::Options problem_options;
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
-  ceres::EigenQuaternionManifold quaternion_manifold;
   for (const PoseGraphEdge& e : edges) {
-    auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 6, 4, 3, 4, 3>(
-        new RelativePoseError(e.relative, sqrt_information(e), e.from_offset, e.to_offset));
-    ceres::LossFunction* loss = e.robust ? new ceres::CauchyLoss(config.loop_loss_scale) : nullptr;
-    problem.AddResidualBlock(cost, loss, q[e.from].coeffs().data(), t[e.from].data(),
-                             q[e.to].coeffs().data(), t[e.to].data());
+    edge_functors.emplace_back(e.relative, sqrt_information(e), e.from_offset, e.to_offset);
+    edge_costs.emplace_back(&edge_functors.back(), ceres::DO_NOT_TAKE_OWNERSHIP);
+    problem.AddResidualBlock(&edge_costs.back(), e.robust ? &loop_loss : nullptr,
+                             q[e.from].coeffs().data(), t[e.from].data(), q[e.to].coeffs().data(),
+                             t[e.to].data());
   }
-  const double level_sigma = config.level_prior_sigma_deg * M_PI / 180.0;
   for (std::size_t i = 0; level_sigma > 0.0 && i < n; ++i) {
     if (fixed[i] || !problem.HasParameterBlock(q[i].coeffs().data())) continue;
-    problem.AddResidualBlock(
-        new ceres::AutoDiffCostFunction<LevelPrior, 2, 4>(new LevelPrior(level_sigma)), nullptr,
-        q[i].coeffs().data());
+    problem.AddResidualBlock(&level_cost, nullptr, q[i].coeffs().data());
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (!problem.HasParameterBlock(q[i].coeffs().data())) continue;
