@@ -20,6 +20,7 @@
 # Usage: daemon_standby_cost.sh BUILD_DIR WORK_DIR (env STREAMS=4 FRAMES=150 RATE=10 RUNS=2)
 set -euo pipefail
 source "$(dirname "$0")/daemon_netns.sh"
+source "$(dirname "$0")/traffic_counters.sh"
 build=$(cd "$1" && pwd)
 work=$2
 daemon=$build/tools/litamin2d/litamin2d
@@ -82,38 +83,6 @@ echo "== simulating $streams vehicles x $frames frames"
   { cat sim.log; exit 1; }
 stream_ids=()
 for s in $(seq 0 $((streams - 1))); do stream_ids+=("$(printf 'vehicle_%02d' "$s")"); done
-
-ticks() { awk '{print $14 + $15}' "/proc/$1/stat"; }
-# lo's transmit counters from /proc/net/dev (this namespace's): tx_packets | tx_bytes
-lo() {
-  awk -v f="$1" '$1 == "lo:" {print (f == "tx_packets" ? $11 : $10)}' /proc/net/dev
-}
-hz=$(getconf CLK_TCK)
-
-traffic_matrix() {  # traffic_matrix DIR "PID=ROLE ...": UDP payload MB and datagrams per
-  # sender -> receiver from DIR/lo.pcap; a port is its owner's (DIR/sockets.txt), a process not
-  # in the list is the replay, "?" a port no process listens on (discovery sent to the unused
-  # ports of maxInitialPeersRange)
-  tcpdump -r "$1/lo.pcap" -nn -q 2>/dev/null | python3 -c '
-import collections, re, sys
-roles = dict(r.split("=") for r in sys.argv[2].split())
-owner = {}
-for line in open(sys.argv[1] + "/sockets.txt"):
-    m = re.search(r":(\d+)\s.*pid=(\d+)", line)
-    if m:
-        owner[m.group(1)] = roles.get(m.group(2), "replay")
-sums = collections.defaultdict(lambda: [0, 0])
-for line in sys.stdin:
-    m = re.search(r"\.(\d+) > [\d.]+\.(\d+): UDP, length (\d+)", line)
-    if not m:
-        continue
-    key = (owner.get(m.group(1), "?"), owner.get(m.group(2), "?"))
-    sums[key][0] += int(m.group(3))
-    sums[key][1] += 1
-for (a, b), (n, d) in sorted(sums.items(), key=lambda kv: -kv[1][0]):
-    print(f"{a} -> {b}: {n / 1e6:.2f} MB, {d} datagrams")
-' "$1" "$2"
-}
 
 one_run() {  # one_run K RUN
   local k=$1 dir="k$1_run$2" names=(a) p i
@@ -201,7 +170,7 @@ YAML
   wait "$ss_pid" || true
   local roles="${daemon_pids[0]}=daemon_A $aggregator_pid=aggregator $probe_pid=probe"
   [ "$k" -eq 2 ] && roles+=" ${daemon_pids[1]}=daemon_B"
-  traffic_matrix "$dir" "$roles" > "$dir/traffic.txt"
+  traffic_matrix "$dir" "$roles" replay > "$dir/traffic.txt"
   # Every stream's odometry must arrive. k = 2: an exclusive reader can take the first frame
   # from both writers (before the stronger one matches: docs/deploy.md, "Hot standby"), which
   # the probe's order check rejects ("message 1 is not after message 0"): counted, not failed.

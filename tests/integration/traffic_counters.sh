@@ -1,0 +1,35 @@
+# Sourced by the standby cost benchmarks (aggregator_standby_cost.sh, daemon_standby_cost.sh):
+# CPU ticks of a process, lo's transmit counters and UDP traffic per sender -> receiver.
+
+ticks() { awk '{print $14 + $15}' "/proc/$1/stat"; }  # ticks PID: utime + stime
+# lo's transmit counters from /proc/net/dev (this namespace's; /sys/class/net shows the
+# namespace sysfs was mounted in): lo tx_packets | lo tx_bytes
+lo() {
+  awk -v f="$1" '$1 == "lo:" {print (f == "tx_packets" ? $11 : $10)}' /proc/net/dev
+}
+hz=$(getconf CLK_TCK)
+
+traffic_matrix() {  # traffic_matrix DIR "PID=ROLE ..." [OTHER]: UDP payload MB and datagrams
+  # per sender -> receiver from DIR/lo.pcap; a port is its owner's (DIR/sockets.txt), a process
+  # not in the list is OTHER (default "publisher"), "?" a port no process listens on (discovery
+  # sent to the unused ports of maxInitialPeersRange)
+  tcpdump -r "$1/lo.pcap" -nn -q 2>/dev/null | python3 -c '
+import collections, re, sys
+roles = dict(r.split("=") for r in sys.argv[2].split())
+owner = {}
+for line in open(sys.argv[1] + "/sockets.txt"):
+    m = re.search(r":(\d+)\s.*pid=(\d+)", line)
+    if m:
+        owner[m.group(1)] = roles.get(m.group(2), sys.argv[3])
+sums = collections.defaultdict(lambda: [0, 0])
+for line in sys.stdin:
+    m = re.search(r"\.(\d+) > [\d.]+\.(\d+): UDP, length (\d+)", line)
+    if not m:
+        continue
+    key = (owner.get(m.group(1), "?"), owner.get(m.group(2), "?"))
+    sums[key][0] += int(m.group(3))
+    sums[key][1] += 1
+for (a, b), (n, d) in sorted(sums.items(), key=lambda kv: -kv[1][0]):
+    print(f"{a} -> {b}: {n / 1e6:.2f} MB, {d} datagrams")
+' "$1" "$2" "${3:-publisher}"
+}
