@@ -10,6 +10,8 @@
 #include "litamin2/dds/qos.hpp"
 #include "sensor_msgs/msg/PointCloud2PubSubTypes.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
 #include <fastdds/dds/publisher/DataWriter.hpp>
@@ -88,10 +90,25 @@ inline daemon::DaemonConfig config_of(const std::string& yaml) {
   return daemon::daemon_config_from_yaml(YAML::Load(yaml));
 }
 
-/// A DDS domain of this process (200..231), so that test processes run in parallel (by ctest
-/// -j, or by other build trees on the machine) seldom share one.
+/// A DDS domain of this process's own (200..231): the first, from pid % 32 on, whose lock file
+/// (/tmp/litamin2_test_domain_<d>.lock, flock held until the process exits) no other running
+/// process holds. Test processes run in parallel (ctest -j, other build trees on the machine)
+/// then never share a domain while at most 32 run at once; a shared one made a test take
+/// another test's samples (PartitionedPatches: 21 taken for 2). Beyond 32, pid-based.
 inline int test_domain() {
-  return 200 + static_cast<int>(getpid() % 32);
+  static const int domain = [] {
+    const int start = static_cast<int>(getpid() % 32);
+    for (int i = 0; i < 32; ++i) {
+      const int d = 200 + (start + i) % 32;
+      const std::string path = "/tmp/litamin2_test_domain_" + std::to_string(d) + ".lock";
+      const int fd = ::open(path.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0666);
+      if (fd < 0) continue;
+      if (::flock(fd, LOCK_EX | LOCK_NB) == 0) return d;  // the lock lives as long as the process
+      ::close(fd);
+    }
+    return 200 + start;
+  }();
+  return domain;
 }
 
 /// A "VmRSS"/"VmHWM"/... line of /proc/self/status in kB (-1 if absent).
