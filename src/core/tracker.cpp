@@ -123,12 +123,18 @@ void Tracker::apply_seed(const TrackerSeed& seed) {
 }
 
 FrameResult Tracker::process(const PointCloud& raw) {
+  return process_scaled(raw, 1.0);
+}
+
+Eigen::Isometry3d Tracker::predicted_motion(double motion_scale) const {
+  return motion_scale == 1.0 ? velocity_ : scaled_motion(velocity_, motion_scale);
+}
+
+FrameResult Tracker::process_scaled(const PointCloud& raw, double motion_scale) {
   prepare_first_scan(raw);
   FrameResult frame;
   const PointCloud& scan = without_self_hits(raw, frame.self_hits);
-  const Eigen::Isometry3d motion =
-      motion_scale_ == 1.0 ? velocity_ : scaled_motion(velocity_, motion_scale_);
-  const Eigen::Isometry3d predicted = pose_ * motion;
+  const Eigen::Isometry3d predicted = pose_ * predicted_motion(motion_scale);
   Eigen::Isometry3d estimate = predicted;
   bool suspected_break = false;
   if (frames_ > 0 && !map_.empty() && search_) {
@@ -143,9 +149,9 @@ FrameResult Tracker::process(const PointCloud& raw) {
       // voxeliser's grid voxels must be those of the kept registration (the map merges them).
       frame.retried = true;
       for (double s : recovery.motion_scales) {
-        ScanRegistration other = register_scan(scan, voxelizer_, map_, *search_,
-                                               pose_ * scaled_motion(velocity_, s * motion_scale_),
-                                               config_.registration);
+        ScanRegistration other =
+            register_scan(scan, voxelizer_, map_, *search_,
+                          pose_ * scaled_motion(velocity_, s * motion_scale), config_.registration);
         const double other_share = other.result.valid ? inlier_share(other) : 0.0;
         registration.voxelize_ms += other.voxelize_ms;
         registration.register_ms += other.register_ms;

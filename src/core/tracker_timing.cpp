@@ -53,9 +53,7 @@ FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) 
   const PointCloud* input = &scan;
   // Constant velocity in time (PredictionConfig): the last motion spans last_interval_, this
   // scan comes `interval` after the last one (longer when files were dropped).
-  motion_scale_ = prediction_scale(interval);
-  const Eigen::Isometry3d predicted_motion =
-      motion_scale_ == 1.0 ? velocity_ : scaled_motion(velocity_, motion_scale_);
+  const double motion_scale = prediction_scale(interval);
   StageTimes first_pass;
   if (times) {
     // Pass 1: the motion within this sweep predicted by constant velocity, the previous frame's
@@ -75,8 +73,9 @@ FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) 
     if ((d.passes == 2 || redo_first) && interval > 0.0 && frames_ > 0 && !map_.empty() &&
         search_) {
       for (int round = 0; round < (redo_first ? 2 : 1); ++round) {
-        const ScanRegistration registered = register_scan(
-            deskewed_, voxelizer_, map_, *search_, pose_ * predicted_motion, config_.registration);
+        const ScanRegistration registered =
+            register_scan(deskewed_, voxelizer_, map_, *search_,
+                          pose_ * predicted_motion(motion_scale), config_.registration);
         first_pass.voxelize_ms += registered.voxelize_ms;
         first_pass.register_ms += registered.register_ms;
         if (!registered.result.valid) break;
@@ -96,8 +95,7 @@ FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) 
     first_scan_ = PointCloud();
     first_times_.clear();
   }
-  FrameResult frame = process(*input);
-  motion_scale_ = 1.0;
+  FrameResult frame = process_scaled(*input, motion_scale);
   frame.deskewed = times != nullptr;
   frame.times.voxelize_ms += first_pass.voxelize_ms;
   frame.times.register_ms += first_pass.register_ms;
@@ -132,10 +130,8 @@ FrameResult Tracker::skip_frame(const SweepTiming& timing) {
   const double interval = interval_to(timing);
   // Extrapolated over the skipped scan's interval; the velocity, and the interval it spans,
   // stay the last registered ones.
-  motion_scale_ = prediction_scale(interval);
   FrameResult frame;
-  pose_ = pose_ * (motion_scale_ == 1.0 ? velocity_ : scaled_motion(velocity_, motion_scale_));
-  motion_scale_ = 1.0;
+  pose_ = pose_ * predicted_motion(prediction_scale(interval));
   frame.pose = pose_;
   ++frames_;
   has_stamp_ = true;

@@ -146,6 +146,12 @@ class Tracker {
   /// The factor the last motion is scaled by to predict a scan `interval` seconds after the
   /// last one (PredictionConfig); 1 when off, before two frames, or for an equal interval.
   double prediction_scale(double interval) const;
+  /// The constant-velocity motion to the next scan: the last one scaled by `motion_scale` (as
+  /// it is, bit for bit, at 1).
+  Eigen::Isometry3d predicted_motion(double motion_scale) const;
+  /// process(scan) with the last motion scaled by `motion_scale` as the prediction (and the
+  /// recovery's starts scaled alike).
+  FrameResult process_scaled(const PointCloud& scan, double motion_scale);
   /// Before the first scan: applies `sensor: auto`'s preset, then the pending seed (if any).
   void prepare_first_scan(const PointCloud& raw);
   void apply_seed(const TrackerSeed& seed);
@@ -182,9 +188,6 @@ class Tracker {
   bool has_stamp_ = false;
   Stamp last_stamp_;
   double last_interval_ = 0.0;
-  /// The constant-velocity prediction's scale for the scan being processed: its interval over
-  /// the one `velocity_` spans (1 without timing).
-  double motion_scale_ = 1.0;
   std::vector<float> azimuth_times_;
   PointCloud deskewed_;
   /// The first scan as measured and its times, until the second scan's motion deskews it in
