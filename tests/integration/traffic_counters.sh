@@ -1,5 +1,49 @@
 # Sourced by the standby cost benchmarks (aggregator_standby_cost.sh, daemon_standby_cost.sh):
-# CPU ticks of a process, lo's transmit counters and UDP traffic per sender -> receiver.
+# their Fast DDS profile, CPU ticks of a process, lo's transmit counters and UDP traffic per
+# sender -> receiver.
+
+# write_udp_lo_profile FILE [LEASE_S]: profile "litamin2", UDPv4 on 127.0.0.1 only (no shared
+# memory, no multicast; unicast discovery to 127.0.0.1), with a participant lease of LEASE_S
+# seconds (announced every 0.5 s) when given.
+write_udp_lo_profile() {
+  local lease=""
+  [ -n "${2:-}" ] && lease="
+          <discovery_config>
+            <leaseDuration><sec>$2</sec></leaseDuration>
+            <leaseAnnouncement><sec>0</sec><nanosec>500000000</nanosec></leaseAnnouncement>
+          </discovery_config>"
+  cat > "$1" <<XML
+<?xml version="1.0" encoding="UTF-8" ?>
+<dds xmlns="http://www.eprosima.com/XMLSchemas/fastRTPS_Profiles">
+  <profiles>
+    <transport_descriptors>
+      <transport_descriptor>
+        <transport_id>udp_lo</transport_id>
+        <type>UDPv4</type>
+        <sendBufferSize>4194304</sendBufferSize>
+        <receiveBufferSize>4194304</receiveBufferSize>
+        <maxInitialPeersRange>16</maxInitialPeersRange>
+        <interfaceWhiteList><address>127.0.0.1</address></interfaceWhiteList>
+      </transport_descriptor>
+    </transport_descriptors>
+    <participant profile_name="litamin2">
+      <rtps>
+        <useBuiltinTransports>false</useBuiltinTransports>
+        <userTransports><transport_id>udp_lo</transport_id></userTransports>
+        <builtin>$lease
+          <metatrafficUnicastLocatorList>
+            <locator><udpv4><address>127.0.0.1</address></udpv4></locator>
+          </metatrafficUnicastLocatorList>
+          <initialPeersList>
+            <locator><udpv4><address>127.0.0.1</address></udpv4></locator>
+          </initialPeersList>
+        </builtin>
+      </rtps>
+    </participant>
+  </profiles>
+</dds>
+XML
+}
 
 ticks() { awk '{print $14 + $15}' "/proc/$1/stat"; }  # ticks PID: utime + stime
 # lo's transmit counters from /proc/net/dev (this namespace's; /sys/class/net shows the
