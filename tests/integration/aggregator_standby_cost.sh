@@ -102,18 +102,7 @@ YAML
   pub_cpu=$(tail -1 "$dir/publish.times" | tr 'ms' '  ' |
     awk '{printf "%.2f", $1 * 60 + $2 + $3 * 60 + $4}')
   # Until every aggregator is quiet (under 2 % of a core for 1 s).
-  local prev=() quiet now
-  for p in "${agg_pids[@]}"; do prev+=("$(ticks "$p")"); done
-  for _ in $(seq 1 600); do
-    sleep 1
-    quiet=1
-    for i in "${!agg_pids[@]}"; do
-      now=$(ticks "${agg_pids[$i]}")
-      [ $((now - prev[i])) -le $((hz / 50)) ] || quiet=0
-      prev[i]=$now
-    done
-    [ "$quiet" -eq 1 ] && break
-  done
+  wait_quiet 600 "${agg_pids[@]}"
   for p in "${agg_pids[@]}"; do c1+=("$(ticks "$p")"); done
   pk1=$(lo tx_packets)
   by1=$(lo tx_bytes)

@@ -115,18 +115,7 @@ YAML
   replay_cpu=$(tail -1 "$dir/replay.times" | tr 'ms' '  ' |
     awk '{printf "%.2f", $1 * 60 + $2 + $3 * 60 + $4}')
   # Until every daemon is quiet (under 2 % of a core for 1 s).
-  local prev=() quiet now
-  for p in "${daemon_pids[@]}"; do prev+=("$(ticks "$p")"); done
-  for _ in $(seq 1 120); do
-    sleep 1
-    quiet=1
-    for i in "${!daemon_pids[@]}"; do
-      now=$(ticks "${daemon_pids[$i]}")
-      [ $((now - prev[i])) -le $((hz / 50)) ] || quiet=0
-      prev[i]=$now
-    done
-    [ "$quiet" -eq 1 ] && break
-  done
+  wait_quiet 120 "${daemon_pids[@]}"
   for p in "${daemon_pids[@]}"; do c1+=("$(ticks "$p")"); done
   pk1=$(lo tx_packets)
   by1=$(lo tx_bytes)

@@ -53,6 +53,27 @@ lo() {
 }
 hz=$(getconf CLK_TCK)
 
+# wait_quiet MAX_S PID...: returns when every PID used under 2 % of a core over the last second,
+# or after MAX_S seconds.
+wait_quiet() {
+  local max=$1 prev=() quiet now i p
+  shift
+  for p in "$@"; do prev+=("$(ticks "$p")"); done
+  for _ in $(seq 1 "$max"); do
+    sleep 1
+    quiet=1
+    i=0
+    for p in "$@"; do
+      now=$(ticks "$p")
+      [ $((now - prev[i])) -le $((hz / 50)) ] || quiet=0
+      prev[i]=$now
+      i=$((i + 1))
+    done
+    [ "$quiet" -eq 1 ] && return 0
+  done
+  return 0
+}
+
 traffic_matrix() {  # traffic_matrix DIR "PID=ROLE ..." [OTHER]: UDP payload MB and datagrams
   # per sender -> receiver from DIR/lo.pcap; a port is its owner's (DIR/sockets.txt), a process
   # not in the list is OTHER (default "publisher"), "?" a port no process listens on (discovery
