@@ -17,6 +17,7 @@
 # Usage: aggregator_standby.sh BUILD_DIR WORK_DIR
 set -euo pipefail
 source "$(dirname "$0")/daemon_netns.sh"
+source "$(dirname "$0")/traffic_counters.sh"
 build=$1
 work=$2
 aggregator=$build/tools/aggregator/litamin2-aggregator
@@ -40,41 +41,7 @@ fail() {
   exit 1
 }
 
-cat > loopback_lease.xml <<XML
-<?xml version="1.0" encoding="UTF-8" ?>
-<dds xmlns="http://www.eprosima.com/XMLSchemas/fastRTPS_Profiles">
-  <profiles>
-    <transport_descriptors>
-      <transport_descriptor>
-        <transport_id>udp_lo</transport_id>
-        <type>UDPv4</type>
-        <sendBufferSize>4194304</sendBufferSize>
-        <receiveBufferSize>4194304</receiveBufferSize>
-        <maxInitialPeersRange>16</maxInitialPeersRange>
-        <interfaceWhiteList><address>127.0.0.1</address></interfaceWhiteList>
-      </transport_descriptor>
-    </transport_descriptors>
-    <participant profile_name="litamin2">
-      <rtps>
-        <useBuiltinTransports>false</useBuiltinTransports>
-        <userTransports><transport_id>udp_lo</transport_id></userTransports>
-        <builtin>
-          <discovery_config>
-            <leaseDuration><sec>$lease_s</sec></leaseDuration>
-            <leaseAnnouncement><sec>0</sec><nanosec>500000000</nanosec></leaseAnnouncement>
-          </discovery_config>
-          <metatrafficUnicastLocatorList>
-            <locator><udpv4><address>127.0.0.1</address></udpv4></locator>
-          </metatrafficUnicastLocatorList>
-          <initialPeersList>
-            <locator><udpv4><address>127.0.0.1</address></udpv4></locator>
-          </initialPeersList>
-        </builtin>
-      </rtps>
-    </participant>
-  </profiles>
-</dds>
-XML
+write_udp_lo_profile loopback_lease.xml "$lease_s"
 profile=$PWD/loopback_lease.xml:litamin2
 
 echo "== simulate $frames scans of the loop"

@@ -99,8 +99,7 @@ YAML
     times > "$dir/publish.times"
     exit $rc
   ) || { cat "$dir/publish.log"; echo "publisher failed"; exit 1; }
-  pub_cpu=$(tail -1 "$dir/publish.times" | tr 'ms' '  ' |
-    awk '{printf "%.2f", $1 * 60 + $2 + $3 * 60 + $4}')
+  pub_cpu=$(children_cpu_s "$dir/publish.times")
   # Until every aggregator is quiet (under 2 % of a core for 1 s).
   wait_quiet 600 "${agg_pids[@]}"
   for p in "${agg_pids[@]}"; do c1+=("$(ticks "$p")"); done

@@ -112,8 +112,7 @@ YAML
     times > "$dir/replay.times"
     exit $rc
   ) || { cat "$dir/replay.log"; echo "replay failed"; exit 1; }
-  replay_cpu=$(tail -1 "$dir/replay.times" | tr 'ms' '  ' |
-    awk '{printf "%.2f", $1 * 60 + $2 + $3 * 60 + $4}')
+  replay_cpu=$(children_cpu_s "$dir/replay.times")
   # Until every daemon is quiet (under 2 % of a core for 1 s).
   wait_quiet 120 "${daemon_pids[@]}"
   for p in "${daemon_pids[@]}"; do c1+=("$(ticks "$p")"); done

@@ -1,4 +1,5 @@
-# Sourced by the standby cost benchmarks (aggregator_standby_cost.sh, daemon_standby_cost.sh):
+# Sourced by the standby tests and cost benchmarks (aggregator_standby.sh, aggregator_standby_cost.sh,
+# daemon_standby_cost.sh):
 # their Fast DDS profile, CPU ticks of a process, lo's transmit counters and UDP traffic per
 # sender -> receiver.
 
@@ -46,6 +47,11 @@ XML
 }
 
 ticks() { awk '{print $14 + $15}' "/proc/$1/stat"; }  # ticks PID: utime + stime
+# children_cpu_s FILE: user + system seconds of a subshell's children, from the last line of the
+# bash `times` output written to FILE ("0m1.230s 0m0.450s"), to 0.01 s.
+children_cpu_s() {
+  tail -1 "$1" | tr 'ms' '  ' | awk '{printf "%.2f", $1 * 60 + $2 + $3 * 60 + $4}'
+}
 # lo's transmit counters from /proc/net/dev (this namespace's; /sys/class/net shows the
 # namespace sysfs was mounted in): lo tx_packets | lo tx_bytes
 lo() {

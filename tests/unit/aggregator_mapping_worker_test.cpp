@@ -3,6 +3,7 @@
 // the tile work of its turn.
 
 #include "litamin2/aggregator/mapping_worker.hpp"
+#include "support/process_temp_dir.hpp"
 #include "support/street_drive.hpp"
 
 #include <gtest/gtest.h>
@@ -18,10 +19,8 @@ using litamin2::testing::out_and_back;
 namespace {
 
 std::string fresh_store(const std::string& name) {
-  const std::string dir = std::filesystem::temp_directory_path().string() +
-                          "/litamin2_worker_test_" + std::to_string(::getpid());
-  std::filesystem::create_directories(dir);
-  const std::string path = dir + "/" + name;
+  const std::string path =
+      (litamin2::testing::process_temp_dir("litamin2_worker_test_") / name).string();
   for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(path + suffix);
   return path;
 }

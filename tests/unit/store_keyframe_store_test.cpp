@@ -15,6 +15,7 @@
 
 #include "litamin2/core/covariance_regularizer.hpp"
 #include "litamin2/store/keyframe_store.hpp"
+#include "support/process_temp_dir.hpp"
 
 namespace {
 
@@ -26,8 +27,7 @@ using mapping::LoopEdge;
 /// A fresh folder per test (and per process, so concurrent runs do not collide).
 fs::path temp_dir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::path(::testing::TempDir()) /
-                       ("litamin2_store_test_" + std::to_string(getpid())) /
+  const fs::path dir = litamin2::testing::process_temp_dir("litamin2_store_test_") /
                        (std::string(info->test_suite_name()) + "_" + info->name());
   fs::remove_all(dir);
   fs::create_directories(dir);
