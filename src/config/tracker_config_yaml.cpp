@@ -72,11 +72,11 @@ std::string enum_name(Enum value, const std::vector<std::pair<std::string, Enum>
   return "?";
 }
 
-/// recovery.motion_scales: a list of numbers (may be empty).
-void read_scales(YamlSection& section, std::vector<double>& scales) {
-  const YAML::Node node = section.child("motion_scales");
+/// A list of numbers (may be empty) under `name`: recovery.motion_scales, first_speeds.
+void read_numbers(YamlSection& section, const char* name, std::vector<double>& scales) {
+  const YAML::Node node = section.child(name);
   if (!node || node.IsNull()) return;
-  const std::string key = section.name("motion_scales");
+  const std::string key = section.name(name);
   if (!node.IsSequence())
     throw ConfigError(key + ": expected a list of numbers, got '" + config::yaml_text(node) + "'");
   scales.clear();
@@ -163,7 +163,9 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node, const TrackerConf
   RecoveryConfig& rec = config.recovery;
   recovery.read("enabled", rec.enabled);
   recovery.read("trigger_ratio", rec.trigger_ratio);
-  read_scales(recovery, rec.motion_scales);
+  read_numbers(recovery, "motion_scales", rec.motion_scales);
+  read_numbers(recovery, "first_speeds", rec.first_speeds);
+  recovery.read("min_gain", rec.min_gain);
   recovery.read("share_smoothing", rec.share_smoothing);
   read_managed(recovery, "reset_ratio", rec.reset_ratio);
   YamlSection search(recovery.child("global_search"), "recovery.global_search");
@@ -272,6 +274,8 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "enabled" << YAML::Value << c.recovery.enabled;
   out << YAML::Key << "trigger_ratio" << YAML::Value << c.recovery.trigger_ratio;
   out << YAML::Key << "motion_scales" << YAML::Value << YAML::Flow << c.recovery.motion_scales;
+  out << YAML::Key << "first_speeds" << YAML::Value << YAML::Flow << c.recovery.first_speeds;
+  out << YAML::Key << "min_gain" << YAML::Value << c.recovery.min_gain;
   out << YAML::Key << "share_smoothing" << YAML::Value << c.recovery.share_smoothing;
   out << YAML::Key << "reset_ratio" << YAML::Value << c.recovery.reset_ratio;
   const GlobalPoseSearchConfig& gs = c.recovery.global_search;

@@ -4,18 +4,34 @@
 
 namespace litamin2 {
 
-void remove_box(const PointCloud& scan, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
-                PointCloud& out) {
+namespace {
+
+/// Writes into `out` the points of `scan` that `drop` does not take, with their intensities and
+/// times.
+template <typename Drop>
+void keep_points(const PointCloud& scan, Drop drop, PointCloud& out) {
   out.points.clear();
   out.intensities.clear();
+  out.times.clear();
   out.points.reserve(scan.points.size());
   const bool with_intensity = scan.has_intensities();
+  const bool with_times = scan.has_times();
   if (with_intensity) out.intensities.reserve(scan.intensities.size());
+  if (with_times) out.times.reserve(scan.times.size());
   for (std::size_t i = 0; i < scan.points.size(); ++i) {
-    if (inside_box(scan.points[i], lo, hi)) continue;
+    if (drop(scan.points[i])) continue;
     out.points.push_back(scan.points[i]);
     if (with_intensity) out.intensities.push_back(scan.intensities[i]);
+    if (with_times) out.times.push_back(scan.times[i]);
   }
+}
+
+}  // namespace
+
+void remove_box(const PointCloud& scan, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                PointCloud& out) {
+  keep_points(
+      scan, [&](const Eigen::Vector3f& p) { return inside_box(p, lo, hi); }, out);
 }
 
 EgoLearner::EgoLearner(const ScanFilterConfig& config) : config_(config) {
@@ -62,15 +78,8 @@ bool EgoLearner::is_ego(const Eigen::Vector3f& p) const {
 
 bool EgoLearner::filter(const PointCloud& scan, PointCloud& out) const {
   if (!decided_ || ego_cells_ == 0) return false;
-  out.points.clear();
-  out.intensities.clear();
-  out.points.reserve(scan.points.size());
-  const bool with_intensity = scan.has_intensities();
-  for (std::size_t i = 0; i < scan.points.size(); ++i) {
-    if (is_ego(scan.points[i])) continue;
-    out.points.push_back(scan.points[i]);
-    if (with_intensity) out.intensities.push_back(scan.intensities[i]);
-  }
+  keep_points(
+      scan, [this](const Eigen::Vector3f& p) { return is_ego(p); }, out);
   return true;
 }
 

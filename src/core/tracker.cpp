@@ -130,11 +130,47 @@ Eigen::Isometry3d Tracker::predicted_motion(double motion_scale) const {
   return motion_scale == 1.0 ? velocity_ : scaled_motion(velocity_, motion_scale);
 }
 
-FrameResult Tracker::process_scaled(const PointCloud& raw, double motion_scale) {
+Eigen::Isometry3d Tracker::registration_start(const PointCloud& scan, double motion_scale,
+                                              double interval_s, StageTimes& spent) {
+  const Eigen::Isometry3d predicted = pose_ * predicted_motion(motion_scale);
+  const RecoveryConfig& recovery = config_.recovery;
+  // Only the second scan of a stream that started without a motion (no seed).
+  if (frames_ != 1 || !recovery.enabled || recovery.first_speeds.empty() || map_.empty() ||
+      !search_ || !(interval_s > 0.0))
+    return predicted;
+  const ScanRegistration at_rest =
+      register_scan(scan, voxelizer_, map_, *search_, predicted, config_.registration);
+  spent.voxelize_ms += at_rest.voxelize_ms;
+  spent.register_ms += at_rest.register_ms;
+  const double rest_share = at_rest.result.valid ? inlier_share(at_rest) : 0.0;
+  Eigen::Isometry3d best = predicted;
+  double best_share = rest_share;
+  for (double speed : recovery.first_speeds) {
+    Eigen::Isometry3d moved = Eigen::Isometry3d::Identity();
+    moved.translation().x() = speed * interval_s;
+    const Eigen::Isometry3d start = predicted * moved;
+    const ScanRegistration other =
+        register_scan(scan, voxelizer_, map_, *search_, start, config_.registration);
+    spent.voxelize_ms += other.voxelize_ms;
+    spent.register_ms += other.register_ms;
+    const double share = other.result.valid ? inlier_share(other) : 0.0;
+    if (share > best_share && share >= recovery.min_gain * rest_share) {
+      best = start;
+      best_share = share;
+    }
+  }
+  return best;
+}
+
+FrameResult Tracker::process_scaled(const PointCloud& raw, double motion_scale,
+                                    std::optional<int> self_hits_removed, double interval_s) {
   prepare_first_scan(raw);
   FrameResult frame;
-  const PointCloud& scan = without_self_hits(raw, frame.self_hits);
-  const Eigen::Isometry3d predicted = pose_ * predicted_motion(motion_scale);
+  if (self_hits_removed) frame.self_hits = *self_hits_removed;
+  const PointCloud& scan = self_hits_removed ? raw : without_self_hits(raw, frame.self_hits);
+  StageTimes start_search;
+  const Eigen::Isometry3d predicted =
+      registration_start(scan, motion_scale, interval_s, start_search);
   Eigen::Isometry3d estimate = predicted;
   bool suspected_break = false;
   if (frames_ > 0 && !map_.empty() && search_) {
@@ -148,6 +184,7 @@ FrameResult Tracker::process_scaled(const PointCloud& raw, double motion_scale) 
       // Registration settles near its start: try the other starts and keep the best fit. The
       // voxeliser's grid voxels must be those of the kept registration (the map merges them).
       frame.retried = true;
+      const double predicted_share = share;
       for (double s : recovery.motion_scales) {
         ScanRegistration other =
             register_scan(scan, voxelizer_, map_, *search_,
@@ -155,7 +192,7 @@ FrameResult Tracker::process_scaled(const PointCloud& raw, double motion_scale) 
         const double other_share = other.result.valid ? inlier_share(other) : 0.0;
         registration.voxelize_ms += other.voxelize_ms;
         registration.register_ms += other.register_ms;
-        if (other_share > share) {
+        if (other_share > share && other_share >= recovery.min_gain * predicted_share) {
           other.voxelize_ms = registration.voxelize_ms;
           other.register_ms = registration.register_ms;
           registration = std::move(other);
@@ -252,6 +289,8 @@ FrameResult Tracker::process_scaled(const PointCloud& raw, double motion_scale) 
     frame.times.voxelize_ms = elapsed_ms(start);
   }
   frame.source_distributions = static_cast<int>(source_.size());
+  frame.times.voxelize_ms += start_search.voxelize_ms;
+  frame.times.register_ms += start_search.register_ms;
 
   // A frame that could not be registered also goes into the map, so that tracking can resume.
   frame.keyframe = frames_ == 0 || !frame.registered || frame.map_reset || is_keyframe(estimate);

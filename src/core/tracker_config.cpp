@@ -93,6 +93,13 @@ void validate(const TrackerConfig& c) {
           static_cast<double>(rec.motion_scales.size()), "at most 16 starts");
   for (double s : rec.motion_scales)
     require(std::isfinite(s) && s >= 0.0 && s <= 10.0, "recovery.motion_scales", s, "each 0 to 10");
+  require(rec.first_speeds.size() <= 16, "recovery.first_speeds",
+          static_cast<double>(rec.first_speeds.size()), "at most 16 starts");
+  for (double v : rec.first_speeds)
+    require(std::isfinite(v) && std::abs(v) <= 100.0, "recovery.first_speeds", v,
+            "each within +-100 m/s");
+  require(std::isfinite(rec.min_gain) && rec.min_gain >= 1.0 && rec.min_gain <= 10.0,
+          "recovery.min_gain", rec.min_gain, "1 to 10");
   require(rec.share_smoothing > 0.0 && rec.share_smoothing <= 1.0, "recovery.share_smoothing",
           rec.share_smoothing, "in (0, 1]");
   require(std::isfinite(rec.reset_ratio) && rec.reset_ratio >= 0.0 && rec.reset_ratio < 1.0,

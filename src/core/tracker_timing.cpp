@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -46,11 +47,18 @@ FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) 
   prepare_first_scan(scan);
   const double interval = interval_to(timing);
   const std::vector<float>* times = nullptr;
+  // With deskew, self-hits are dropped first, in the sensor frame of their firing: they move
+  // with the sensor, and deskew would move them by the motion within the sweep (at highway
+  // speed up to a sweep's 2.5 m of travel), out of the cells or box that catch them.
+  const PointCloud* measured = &scan;
+  std::optional<int> self_hits;
   if (d.enabled) {
     if (const auto why = point_times_error(scan)) throw std::invalid_argument("Tracker: " + *why);
-    times = point_times(scan);
+    self_hits = 0;
+    measured = &without_self_hits(scan, *self_hits);
+    times = point_times(*measured);
   }
-  const PointCloud* input = &scan;
+  const PointCloud* input = measured;
   // Constant velocity in time (PredictionConfig): the last motion spans last_interval_, this
   // scan comes `interval` after the last one (longer when files were dropped).
   const double motion_scale = prediction_scale(interval);
@@ -61,7 +69,7 @@ FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) 
     Twist twist;
     if (frames_ >= 2 && last_interval_ > 0.0) twist = twist_from_motion(velocity_, last_interval_);
     auto start = std::chrono::steady_clock::now();
-    deskew(scan, *times, twist, deskewed_);
+    deskew(*measured, *times, twist, deskewed_);
     first_pass.deskew_ms += elapsed_ms(start);
     // Pass 2: register the corrected scan, and correct the raw scan again with the motion
     // registration found from the last pose to this one (a frame fresher than the
@@ -75,13 +83,14 @@ FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) 
       for (int round = 0; round < (redo_first ? 2 : 1); ++round) {
         const ScanRegistration registered =
             register_scan(deskewed_, voxelizer_, map_, *search_,
-                          pose_ * predicted_motion(motion_scale), config_.registration);
+                          registration_start(deskewed_, motion_scale, interval, first_pass),
+                          config_.registration);
         first_pass.voxelize_ms += registered.voxelize_ms;
         first_pass.register_ms += registered.register_ms;
         if (!registered.result.valid) break;
         twist = twist_from_motion(pose_.inverse() * registered.result.pose, interval);
         start = std::chrono::steady_clock::now();
-        deskew(scan, *times, twist, deskewed_);
+        deskew(*measured, *times, twist, deskewed_);
         first_pass.deskew_ms += elapsed_ms(start);
         if (redo_first) rebuild_first_keyframe(twist);
       }
@@ -89,13 +98,13 @@ FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) 
     input = &deskewed_;
   }
   if (frames_ == 0 && times) {
-    first_scan_ = scan;
+    first_scan_ = *measured;
     first_times_ = *times;
   } else if (frames_ >= 1) {
     first_scan_ = PointCloud();
     first_times_.clear();
   }
-  FrameResult frame = process_scaled(*input, motion_scale);
+  FrameResult frame = process_scaled(*input, motion_scale, self_hits, interval);
   frame.deskewed = times != nullptr;
   frame.times.voxelize_ms += first_pass.voxelize_ms;
   frame.times.register_ms += first_pass.register_ms;

@@ -47,6 +47,8 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   config.registration.max_isotropy = 0.125;
   config.registration.line_gate = 0.0625;
   config.recovery.reset_ratio = 0.375;
+  config.recovery.min_gain = 1.25;
+  config.recovery.first_speeds = {-2.5, 7.5};
   config.recovery.global_search.trigger_ratio = 0.4375;
   config.recovery.global_search.range_xy = 12.5;
   config.recovery.global_search.range_yaw_deg = 30.0;
@@ -60,6 +62,8 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   EXPECT_EQ(back.registration.correspondence, CorrespondenceMethod::kVoxel27);
   EXPECT_EQ(back.registration.line_gate, 0.0625);
   EXPECT_EQ(back.recovery.reset_ratio, 0.375);
+  EXPECT_EQ(back.recovery.min_gain, 1.25);
+  EXPECT_EQ(back.recovery.first_speeds, (std::vector<double>{-2.5, 7.5}));
   EXPECT_EQ(back.recovery.global_search.trigger_ratio, 0.4375);
   EXPECT_EQ(back.recovery.global_search.range_xy, 12.5);
   EXPECT_EQ(back.recovery.global_search.range_yaw_deg, 30.0);
@@ -93,6 +97,13 @@ TEST(TrackerConfigYaml, ErrorsNameKeyAndValue) {
             std::string::npos);
   EXPECT_NE(error_of("registration: {line_gate: 1}").find("registration.line_gate: 1"),
             std::string::npos);
+  EXPECT_NE(error_of("recovery: {first_speeds: [10, 150]}").find("recovery.first_speeds: 150"),
+            std::string::npos);
+  EXPECT_NE(error_of("recovery: {first_speeds: 10}").find("recovery.first_speeds"),
+            std::string::npos);
+  EXPECT_NE(error_of("recovery: {min_gain: 0.9}").find("recovery.min_gain: 0.9"),
+            std::string::npos);
+  EXPECT_NE(error_of("recovery: {min_gain: 11}").find("recovery.min_gain: 11"), std::string::npos);
   EXPECT_NE(error_of("recovery: {reset_ratio: -0.5}").find("recovery.reset_ratio: -0.5"),
             std::string::npos);
   EXPECT_NE(error_of("recovery: {reset_ratio: 1}").find("recovery.reset_ratio: 1"),

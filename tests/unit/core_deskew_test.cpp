@@ -3,6 +3,7 @@
 // tracker on sweeps with motion, with and without deskew.
 
 #include "litamin2/core/deskew.hpp"
+#include "litamin2/core/scan_filter.hpp"
 #include "litamin2/core/so3.hpp"
 #include "litamin2/core/tracker.hpp"
 #include "support/synthetic_scene.hpp"
@@ -289,6 +290,37 @@ TEST_F(DeskewTracker, DeskewFollowsTheSensorAtTheStamp) {
   // mean 0.17 m, max 1.17 m / 4.9 deg (off: 0.39 / 1.13 m / 1.8 deg), so only the mean is bound.
   EXPECT_LT(two.mean_m, 0.5 * off.mean_m);
   EXPECT_LT(one.mean_m, 0.5 * off.mean_m);
+}
+
+TEST_F(DeskewTracker, SelfHitsAreDroppedInTheFrameOfTheirFiring) {
+  // A mirror-sized body on the sensor's left, fixed to the sensor: its points are hit a quarter
+  // or three quarters into the clockwise sweep, when the sensor has moved 0.6 or 1.9 m at
+  // 25 m/s. Deskew would move them that far along x, out of the 1 m box that drops them.
+  const Eigen::Vector3d box_min(-0.5, 0.8, -0.3), box_max(0.5, 1.2, 0.0);
+  PointCloud body;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.02f, 0.98f);
+  for (int i = 0; i < 400; ++i)
+    body.points.emplace_back(-0.5f + 1.0f * u(rng), 0.8f + 0.4f * u(rng), -0.3f + 0.3f * u(rng));
+  std::vector<float> body_times;
+  times_from_azimuth(body, AzimuthTiming{}, body_times);
+  TrackerConfig config;
+  config.deskew.enabled = true;
+  config.filter.ego = EgoFilterMode::kBox;
+  config.filter.ego_box_min = box_min;
+  config.filter.ego_box_max = box_max;
+  Tracker tracker(config);
+  for (int k = 0; k < 6; ++k) {
+    PointCloud scan = scans_with_times()[static_cast<std::size_t>(k)];
+    int world_in_box = 0;
+    for (const Eigen::Vector3f& p : scan.points) world_in_box += inside_box(p, box_min, box_max);
+    scan.points.insert(scan.points.end(), body.points.begin(), body.points.end());
+    scan.times.insert(scan.times.end(), body_times.begin(), body_times.end());
+    const FrameResult r =
+        tracker.process(scan, SweepTiming{Stamp::from_seconds(k * Drive::kPeriod)});
+    ASSERT_TRUE(r.deskewed);
+    EXPECT_EQ(r.self_hits, 400 + world_in_box) << "scan " << k;
+  }
 }
 
 TEST_F(DeskewTracker, TimesFromTheAzimuthWhenTheScanHasNone) {

@@ -47,7 +47,7 @@ inline bool inside_box(const Eigen::Vector3f& p, const Eigen::Vector3d& lo,
          p.z() < hi.z();
 }
 
-/// Writes into `out` the points of `scan` outside the box (intensities kept alongside).
+/// Writes into `out` the points of `scan` outside the box (intensities and times kept alongside).
 void remove_box(const PointCloud& scan, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
                 PointCloud& out);
 
@@ -63,8 +63,9 @@ class EgoLearner {
   bool decided() const { return decided_; }
   /// Number of self-hit cells found (0 before they are decided).
   std::size_t cells() const { return ego_cells_; }
-  /// Writes into `out` the points of `scan` not in a self-hit cell and returns true; returns
-  /// false (out untouched) when there is nothing to drop: undecided, or no self-hit cell.
+  /// Writes into `out` the points of `scan` not in a self-hit cell (intensities and times kept
+  /// alongside) and returns true; returns false (out untouched) when there is nothing to drop:
+  /// undecided, or no self-hit cell.
   bool filter(const PointCloud& scan, PointCloud& out) const;
   /// Whether p (sensor frame) lies in a self-hit cell.
   bool is_ego(const Eigen::Vector3f& p) const;

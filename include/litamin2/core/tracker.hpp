@@ -14,6 +14,7 @@
 
 #include <Eigen/Geometry>
 #include <memory>
+#include <optional>
 
 namespace litamin2 {
 
@@ -87,9 +88,10 @@ class Tracker {
   FrameResult process(const PointCloud& scan);
   /// The same, for a scan taken at `timing`: the constant-velocity prediction is the last
   /// motion scaled to the time since the last scan (config.prediction; with equal intervals,
-  /// as process(scan) predicts it), and with config.deskew enabled, the scan's points are
-  /// first moved to the sensor frame at the stamp by the motion within the sweep (core/
-  /// deskew.hpp), and the pose is the sensor's at the stamp. Without deskew and with equal
+  /// as process(scan) predicts it), and with config.deskew enabled, the scan's self-hits are
+  /// dropped (in the frame of their firing) and its points then moved to the sensor frame at
+  /// the stamp by the motion within the sweep (core/deskew.hpp); the pose is the sensor's at
+  /// the stamp. Without deskew and with equal
   /// intervals it is process(scan), bit for bit. Throws std::invalid_argument (state unchanged) for
   /// a stamp not after the previous one or invalid per-point times (point_times_error).
   FrameResult process(const PointCloud& scan, const SweepTiming& timing);
@@ -150,8 +152,19 @@ class Tracker {
   /// it is, bit for bit, at 1).
   Eigen::Isometry3d predicted_motion(double motion_scale) const;
   /// process(scan) with the last motion scaled by `motion_scale` as the prediction (and the
-  /// recovery's starts scaled alike).
-  FrameResult process_scaled(const PointCloud& scan, double motion_scale);
+  /// recovery's starts scaled alike). With `self_hits_removed` (their number), `scan` is
+  /// already without its self-hits and is not filtered again.
+  /// `interval_s`: seconds since the last scan (RecoveryConfig::first_speeds).
+  FrameResult process_scaled(const PointCloud& scan, double motion_scale,
+                             std::optional<int> self_hits_removed = std::nullopt,
+                             double interval_s = 0.1);
+  /// Where the second scan's registration starts when no motion is known
+  /// (RecoveryConfig::first_speeds): the first pose, or the first pose moved along the sensor's
+  /// x axis at one of the speeds over `interval_s`, if registering `scan` (as it is voxelised,
+  /// without self-hits) from there fits min_gain times better than from the first pose. The
+  /// prediction otherwise. Adds the registrations' time to `spent`.
+  Eigen::Isometry3d registration_start(const PointCloud& scan, double motion_scale,
+                                       double interval_s, StageTimes& spent);
   /// Before the first scan: applies `sensor: auto`'s preset, then the pending seed (if any).
   void prepare_first_scan(const PointCloud& raw);
   void apply_seed(const TrackerSeed& seed);

@@ -50,6 +50,17 @@ struct RecoveryConfig {
   /// The other starts: the constant-velocity motion scaled by these factors (0: standing still,
   /// 2: one frame dropped).
   std::vector<double> motion_scales = {0.0, 0.5, 1.5, 2.0, 3.0};
+  /// A registration from another start replaces the prediction's only if its inlier share is
+  /// at least this multiple of the prediction's: where the scene constrains the motion weakly
+  /// (a highway, a corridor) the starts fit almost alike, and the prediction is the better
+  /// guess. 1: the best share wins. docs/accuracy.md "A start must fit clearly better".
+  double min_gain = 1.15;
+  /// The second scan, when no motion is known yet (a start at speed: a restarted daemon, a
+  /// recording cut mid-drive), is also registered from the first pose moved along the sensor's
+  /// x axis at these speeds (m/s) over the interval between the two scans (0.1 s untimed); one
+  /// of them is kept if it fits at least min_gain times better than the start at rest. Empty:
+  /// the start at rest only.
+  std::vector<double> first_speeds = {5.0, 10.0, 20.0, 30.0};
   /// Weight of a new frame in the running inlier shares: the typical share (every registered
   /// frame; the trigger above and the global search compare with it) and the fitting share
   /// (only frames at or above trigger_ratio of it: a run of frames that fit badly, after a
