@@ -4,7 +4,7 @@
 # plain run's bit for bit while every frame counts as deskewed), and a truncated PCD at frame
 # 12: without --skip-bad-frames the run fails naming the file; with it the file is logged and
 # listed in stats.json, every frame still has a pose, and the trajectory ends where the intact
-# run's does.
+# run's does. frames.csv has a row per scan, the skipped one marked.
 set -euo pipefail
 tools=$1; work=$2
 odo="$tools/odometry/litamin2-odometry"
@@ -48,6 +48,23 @@ assert len(skipped) == 1 and skipped[0]["frame"] == 12, skipped
 assert skipped[0]["file"].endswith("000012.pcd") and skipped[0]["error"], skipped
 PY
 test "$(wc -l < "$work/skip/poses_kitti.txt")" -eq 30
+# frames.csv: a header and one row per scan, the skipped one marked, the others registered
+# (but the first) and their positions those of poses_kitti.txt.
+python3 - "$work/skip/frames.csv" "$work/skip/poses_kitti.txt" <<'PY' || { echo "FAIL: frames.csv"; exit 1; }
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+poses = [list(map(float, l.split())) for l in open(sys.argv[2])]
+assert len(rows) == 30, len(rows)
+assert [r["index"] for r in rows] == [str(i) for i in range(30)]
+assert rows[12]["status"] == "skipped" and rows[12]["file"] == "000012.pcd", rows[12]
+assert rows[0]["status"] == "not_registered"
+assert all(r["status"] == "registered" for i, r in enumerate(rows) if i not in (0, 12))
+for i, r in enumerate(rows):
+    if i == 12: continue
+    p = poses[i]
+    assert abs(float(r["x"]) - p[3]) < 1e-4 and abs(float(r["y"]) - p[7]) < 1e-4 and abs(float(r["z"]) - p[11]) < 1e-4, (i, r, p)
+    assert 0.0 <= float(r["inlier_share"]) <= 1.0 and int(r["deskewed"]) == 1
+PY
 # The last pose (KITTI row: translation in columns 4, 8, 12) within 0.2 m of the intact run's.
 d=$(paste -d' ' <(tail -1 "$work/plain/poses_kitti.txt") <(tail -1 "$work/skip/poses_kitti.txt") |
   awk '{ print sqrt(($4-$16)^2 + ($8-$20)^2 + ($12-$24)^2) }')

@@ -17,6 +17,7 @@
 #include "litamin2/io/trajectory.hpp"
 #include "litamin2/mapping/offline_slam.hpp"
 #include "litamin2/version.hpp"
+#include "odometry/frame_log.hpp"
 #include "odometry/run_stats.hpp"
 
 #include <tbb/global_control.h>
@@ -152,6 +153,7 @@ int run(const Options& options) {
                              : mapping::load_mapper_config(options.mapper_config_file));
   }
   tools::RunStats stats;
+  tools::FrameLog frame_log((fs::path(options.output) / "frames.csv").string());
   std::vector<Eigen::Isometry3d> poses;
   std::vector<io::TimedPose> timed;
   tools::Progress progress("odometry", last - first);
@@ -170,12 +172,14 @@ int run(const Options& options) {
       std::fprintf(stderr, "litamin2-odometry: skipping frame %zu: %s\n", i, e.what());
       frame = tracker.skip_frame(timing);
       stats.add_skipped(i, sequence.path(i), e.what());
+      frame_log.add_skipped(i, sequence.path(i), sequence.timestamp(i));
       if (loop_closure) loop_closure->add(tracker, frame, timing.stamp);
       poses.push_back(frame.pose);
       continue;
     }
     arena.execute([&] { frame = tracker.process(scan, timing); });
     stats.add(frame);
+    frame_log.add(i, sequence.path(i), sequence.timestamp(i), frame);
     if (loop_closure) loop_closure->add(tracker, frame, Stamp::from_seconds(sequence.timestamp(i)));
     poses.push_back(frame.pose);
     progress.update(i - first + 1,
@@ -244,7 +248,7 @@ int run(const Options& options) {
     } else {
       print_accuracy("", acc);
     }
-    std::printf("wrote %s/{poses_kitti.txt,poses_tum.txt,config.yaml,stats.json%s}\n",
+    std::printf("wrote %s/{poses_kitti.txt,poses_tum.txt,config.yaml,stats.json,frames.csv%s}\n",
                 options.output.c_str(), tr ? ",poses_kitti_cam.txt" : "");
   }
   return stats.failures() > 0 ? 3 : 0;
@@ -260,7 +264,9 @@ int main(int argc, char** argv) {
       "poses_kitti.txt (sensor poses in the frame of the first scan, 3x4 row-major), "
       "poses_tum.txt,\n"
       "config.yaml (the full config used), stats.json (speed, memory, accuracy if ground truth\n"
-      "is known) and, with KITTI calibration, poses_kitti_cam.txt (camera-0 convention).\n"
+      "is known), frames.csv (one row per scan: registered or not, inlier share, recovery,\n"
+      "global search, map reset, re-grids, self-hits, time, position) and, with KITTI\n"
+      "calibration, poses_kitti_cam.txt (camera-0 convention).\n"
       "With --deskew, each scan's points are corrected for the motion within its sweep before\n"
       "registration, from their per-point times (PCD input with a time field; a KITTI folder's\n"
       "pcd/ scans, as litamin2-sim --sweep-motion writes them, are then read instead of\n"
