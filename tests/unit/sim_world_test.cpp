@@ -8,6 +8,7 @@
 #include "litamin2/io/kitti_calib.hpp"
 #include "litamin2/io/trajectory.hpp"
 #include "litamin2/sim/builtin_trajectory.hpp"
+#include "litamin2/sim/ground_clearance.hpp"
 #include "litamin2/sim/raycaster.hpp"
 #include "litamin2/sim/world.hpp"
 
@@ -77,4 +78,31 @@ TEST(SimWorld, Kitti00WorldBuildsFastAndTileCacheIsBounded) {
     EXPECT_LE(rc.cached_tiles(), std::max<std::size_t>(60, rc.active_tiles()));
     EXPECT_GT(rc.active_triangles(), 10000u);
   }
+}
+
+TEST(SimWorld, GroundClearanceFlagsAClimbInPlace) {
+  // The built-in loop rides on its road; a path that rises 8 m while it moves 8 m forward (a
+  // ground truth's height drift at a near standstill) cannot have a road under every pose.
+  const auto loop = sim::builtin_trajectory("loop");
+  const sim::World on_road(loop, 3);
+  const sim::GroundClearance fine =
+      sim::check_ground_clearance(on_road, loop, on_road.options().sensor_height, 0.5);
+  EXPECT_EQ(fine.poses_off, 0u);
+  EXPECT_LT(fine.worst_m, 0.5);
+
+  std::vector<Eigen::Isometry3d> climb;
+  for (int i = 0; i < 160; ++i) {
+    Eigen::Isometry3d p = Eigen::Isometry3d::Identity();
+    const bool in_place = i >= 60 && i < 100;
+    const double x = i < 60 ? 1.0 * i : i < 100 ? 60.0 + 0.2 * (i - 60) : 68.0 + 1.0 * (i - 100);
+    p.translation() = Eigen::Vector3d(x, 0.0, in_place ? 0.2 * (i - 60) : (i < 60 ? 0.0 : 8.0));
+    climb.push_back(p);
+  }
+  const sim::World world(climb, 3);
+  const sim::GroundClearance c =
+      sim::check_ground_clearance(world, climb, world.options().sensor_height, 0.5);
+  EXPECT_GT(c.poses_off, 10u);
+  EXPECT_GE(c.first_off, 40u);  // the flagged stretch is around the climb, not the flat ends
+  EXPECT_LE(c.last_off, 120u);
+  EXPECT_GT(c.worst_m, 1.5);
 }

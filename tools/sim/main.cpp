@@ -27,6 +27,7 @@
 #include "litamin2/sim/builtin_trajectory.hpp"
 #include "litamin2/sim/fleet.hpp"
 #include "litamin2/sim/frame_selection.hpp"
+#include "litamin2/sim/ground_clearance.hpp"
 #include "litamin2/sim/random.hpp"
 #include "litamin2/sim/raycaster.hpp"
 #include "litamin2/sim/realism.hpp"
@@ -417,6 +418,20 @@ int main(int argc, char** argv) {
     spdlog::info("world: {} objects in {} tiles, built in {:.2f} s", world.objects().size(),
                  world.tile_count(),
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t_world).count());
+
+    for (std::size_t k = 0; k < vehicles.size(); ++k) {
+      const auto& v = vehicles[k];
+      const sim::GroundClearance c =
+          sim::check_ground_clearance(world, v.sensor_poses, model.mount_height, 0.5);
+      if (c.poses_off == 0) continue;
+      spdlog::warn(
+          "{}the sensor is up to {:.1f} m off its mount height above the simulated ground at {} "
+          "of {} frames (source frames {}-{}): the trajectory climbs or falls where it hardly "
+          "moves, and the road laid under it cuts through the scans there (a ground no vehicle "
+          "sees; e.g. KITTI 08's first 60 frames)",
+          fleet > 0 ? fmt::format("vehicle_{:02}: ", k) : std::string(), c.worst_m, c.poses_off,
+          v.sensor_poses.size(), v.source_frames[c.first_off], v.source_frames[c.last_off]);
+    }
 
     if (fleet > 0) {
       // Where each vehicle starts in the shared world frame (velodyne convention, KITTI 3x4 row
