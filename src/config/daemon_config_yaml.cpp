@@ -110,6 +110,25 @@ Eigen::Isometry3d parse_extrinsic(const YAML::Node& node, const std::string& pat
   return pose;
 }
 
+/// A non-empty list of CPU numbers (integers); their range and duplicates are checked by
+/// validate().
+std::vector<int> cpu_list(const YAML::Node& node, const std::string& path) {
+  if (!node.IsSequence() || node.size() == 0)
+    throw ConfigError(path + ": expected a non-empty list of CPU numbers, got '" + yaml_text(node) +
+                      "' (leave the key out for the inherited CPUs)");
+  std::vector<int> out;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string item = path + "[" + std::to_string(i) + "]";
+    try {
+      if (!node[i].IsScalar()) throw YAML::Exception(YAML::Mark(), "not a scalar");
+      out.push_back(node[i].as<int>());
+    } catch (const YAML::Exception&) {
+      throw ConfigError(item + ": cannot read '" + yaml_text(node[i]) + "' as a CPU number");
+    }
+  }
+  return out;
+}
+
 /// A stream's `topics:`: a list of {topic, extrinsic}, at least one; both keys required.
 std::vector<SensorInput> parse_inputs(const YAML::Node& node, const std::string& path) {
   if (!node.IsSequence() || node.size() == 0)
@@ -214,6 +233,20 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
 
   root.read_range("threads", config.threads, 0, 1024);
   root.read_range("queue_depth", config.queue_depth, 1, 10000);
+  {
+    YamlSection scheduling(root.child("scheduling"), "scheduling");
+    scheduling.read_enum(
+        "scope", config.scheduling.scope,
+        {{"workers", SchedulingScope::kWorkers}, {"process", SchedulingScope::kProcess}});
+    scheduling.read_enum("policy", config.scheduling.policy,
+                         {{"other", WorkerPolicy::kOther},
+                          {"fifo", WorkerPolicy::kFifo},
+                          {"rr", WorkerPolicy::kRoundRobin}});
+    scheduling.read("priority", config.scheduling.priority);
+    const YAML::Node cpus = scheduling.child("cpus");
+    if (cpus && !cpus.IsNull()) config.scheduling.cpus = cpu_list(cpus, "scheduling.cpus");
+    scheduling.reject_unknown();
+  }
   root.read_range("shutdown_timeout_s", config.shutdown_timeout_s, 0.0, 60.0);
 
   {

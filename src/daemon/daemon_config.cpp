@@ -101,6 +101,8 @@ void validate(const DaemonConfig& config) {
   if (out.tf_topic == out.tf_static_topic)
     throw ConfigError("outputs.tf_static_topic: equals outputs.tf_topic");
   const auto& levels = service::kLogLevels;
+  if (const auto why = worker_scheduling_error(config.scheduling))
+    throw ConfigError("scheduling." + *why);
   if (std::find(levels.begin(), levels.end(), std::string_view(config.log_level)) == levels.end())
     throw ConfigError("log_level: '" + config.log_level + "' is not a log level");
   if (config.streams.empty() && !config.discovery.enabled)

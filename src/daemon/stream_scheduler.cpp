@@ -29,16 +29,21 @@ std::int64_t to_ns(std::chrono::steady_clock::time_point t) {
 }
 }  // namespace
 
-StreamScheduler::StreamScheduler(int threads, std::size_t queue_depth)
+StreamScheduler::StreamScheduler(int threads, std::size_t queue_depth, WorkerScheduling scheduling)
     : threads_(threads > 0 ? threads : tbb::info::default_concurrency()),
-      queue_depth_(queue_depth) {
+      queue_depth_(queue_depth),
+      scheduling_(std::move(scheduling)) {
   if (queue_depth_ == 0) throw std::invalid_argument("StreamScheduler: queue depth must be >= 1");
   // Every slot is reserved for the workers below, which join the arena for each frame: oneTBB
   // starts no worker threads for it.
   arena_.initialize(threads_, static_cast<unsigned>(threads_));
   workers_.reserve(static_cast<std::size_t>(threads_));
   try {
-    for (int i = 0; i < threads_; ++i) workers_.emplace_back([this] { work(); });
+    // No stream exists yet, so no frame runs before its worker's scheduling is set.
+    for (int i = 0; i < threads_; ++i) {
+      workers_.emplace_back([this] { work(); });
+      apply_worker_scheduling(workers_.back().native_handle(), scheduling_);
+    }
   } catch (...) {
     stop_workers();
     throw;

@@ -484,3 +484,71 @@ TEST(DaemonConfig, ShardingErrors) {
   EXPECT_EQ(error_of("discovery: {enabled: true}\nsharding: {replicas: 2}"),
             "sharding.replicas: needs sharding.enabled (standbys follow the members)");
 }
+
+TEST(DaemonConfig, WorkerSchedulingDefaultsToOtherWithInheritedCpus) {
+  const DaemonConfig c = parse("discovery: {enabled: true}");
+  EXPECT_EQ(c.scheduling.policy, WorkerPolicy::kOther);
+  EXPECT_EQ(c.scheduling.priority, 0);
+  EXPECT_TRUE(c.scheduling.cpus.empty());
+}
+
+TEST(DaemonConfig, WorkerSchedulingIsRead) {
+  const DaemonConfig fifo =
+      parse("discovery: {enabled: true}\nscheduling: {policy: fifo, priority: 10, cpus: [1, 0]}");
+  EXPECT_EQ(fifo.scheduling.policy, WorkerPolicy::kFifo);
+  EXPECT_EQ(fifo.scheduling.priority, 10);
+  EXPECT_EQ(fifo.scheduling.cpus, (std::vector<int>{1, 0}));
+  const DaemonConfig rr =
+      parse("discovery: {enabled: true}\nscheduling: {policy: rr, priority: 99}");
+  EXPECT_EQ(rr.scheduling.policy, WorkerPolicy::kRoundRobin);
+  EXPECT_EQ(rr.scheduling.priority, 99);
+  EXPECT_EQ(fifo.scheduling.scope, SchedulingScope::kWorkers);
+  const DaemonConfig process =
+      parse("discovery: {enabled: true}\nscheduling: {scope: process, policy: fifo, priority: 10}");
+  EXPECT_EQ(process.scheduling.scope, SchedulingScope::kProcess);
+  EXPECT_EQ(process.scheduling.policy, WorkerPolicy::kFifo);
+  const DaemonConfig pinned = parse("discovery: {enabled: true}\nscheduling: {cpus: [3]}");
+  EXPECT_EQ(pinned.scheduling.policy, WorkerPolicy::kOther);
+  EXPECT_EQ(pinned.scheduling.cpus, (std::vector<int>{3}));
+}
+
+TEST(DaemonConfig, WorkerSchedulingErrors) {
+  const std::string head = "discovery: {enabled: true}\n";
+  EXPECT_EQ(error_of(head + "scheduling: {policy: deadline, priority: 10}"),
+            "scheduling.policy: 'deadline' is not one of: other, fifo, rr");
+  EXPECT_EQ(error_of(head + "scheduling: {policy: FIFO, priority: 10}"),
+            "scheduling.policy: 'FIFO' is not one of: other, fifo, rr");
+  EXPECT_EQ(error_of(head + "scheduling: {scope: all, policy: fifo, priority: 10}"),
+            "scheduling.scope: 'all' is not one of: workers, process");
+  EXPECT_EQ(error_of(head + "scheduling: {policy: fifo}"),
+            "scheduling.priority: 0 is out of range [1, 99] for fifo");
+  EXPECT_EQ(error_of(head + "scheduling: {policy: fifo, priority: 100}"),
+            "scheduling.priority: 100 is out of range [1, 99] for fifo");
+  EXPECT_EQ(error_of(head + "scheduling: {policy: rr, priority: -1}"),
+            "scheduling.priority: -1 is out of range [1, 99] for rr");
+  EXPECT_EQ(error_of(head + "scheduling: {priority: 10}"),
+            "scheduling.priority: 10 given with policy other (a priority is for fifo and rr; other "
+            "has none)");
+  EXPECT_EQ(error_of(head + "scheduling: {policy: fifo, priority: ten}"),
+            "scheduling.priority: cannot read 'ten' as an integer");
+  EXPECT_EQ(error_of(head + "scheduling: {cpus: []}"),
+            "scheduling.cpus: expected a non-empty list of CPU numbers, got '[]' (leave the key "
+            "out for the inherited CPUs)");
+  EXPECT_EQ(error_of(head + "scheduling: {cpus: 1}"),
+            "scheduling.cpus: expected a non-empty list of CPU numbers, got '1' (leave the key "
+            "out for the inherited CPUs)");
+  EXPECT_EQ(error_of(head + "scheduling: {cpus: [1, x]}"),
+            "scheduling.cpus[1]: cannot read 'x' as a CPU number");
+  EXPECT_EQ(error_of(head + "scheduling: {cpus: [1.5]}"),
+            "scheduling.cpus[0]: cannot read '1.5' as a CPU number");
+  EXPECT_EQ(error_of(head + "scheduling: {cpus: [0, -1]}"),
+            "scheduling.cpus[1]: -1 is out of range [0, 1023]");
+  EXPECT_EQ(error_of(head + "scheduling: {cpus: [1024]}"),
+            "scheduling.cpus[0]: 1024 is out of range [0, 1023]");
+  EXPECT_EQ(error_of(head + "scheduling: {cpus: [1, 2, 1]}"),
+            "scheduling.cpus[2]: CPU 1 is given twice");
+  EXPECT_EQ(error_of(head + "scheduling: {policy: fifo, priority: 10, nice: 5}"),
+            "scheduling.nice: unknown key");
+  EXPECT_EQ(error_of(head + "scheduling: fifo"),
+            "scheduling: expected a mapping of keys to values, got 'fifo'");
+}

@@ -15,6 +15,7 @@
 #include "litamin2/service/service_loop.hpp"
 #include "litamin2/version.hpp"
 
+#include <spdlog/fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
@@ -32,11 +33,18 @@ constexpr std::chrono::milliseconds kLoopPeriod(50);
 std::string describe(const DaemonConfig& c) {
   std::string streams;
   for (const StreamConfig& s : c.streams) streams += (streams.empty() ? "" : ", ") + s.id;
+  std::string scheduling;
+  if (c.scheduling.policy != WorkerPolicy::kOther)
+    scheduling = fmt::format(", {} {} priority {}", scheduling_scope_name(c.scheduling.scope),
+                             worker_policy_name(c.scheduling.policy), c.scheduling.priority);
+  if (!c.scheduling.cpus.empty())
+    scheduling += fmt::format(", {} on CPUs [{}]", scheduling_scope_name(c.scheduling.scope),
+                              fmt::join(c.scheduling.cpus, ", "));
   return fmt::format(
-      "domain {}, profile {}, streams [{}], discovery {}, threads {}, queue depth {}", c.dds.domain,
-      service::to_string(c.dds.profile), streams,
+      "domain {}, profile {}, streams [{}], discovery {}, threads {}, queue depth {}{}",
+      c.dds.domain, service::to_string(c.dds.profile), streams,
       c.discovery.enabled ? c.discovery.pattern : std::string("off"),
-      c.threads == 0 ? std::string("auto") : std::to_string(c.threads), c.queue_depth);
+      c.threads == 0 ? std::string("auto") : std::to_string(c.threads), c.queue_depth, scheduling);
 }
 
 }  // namespace

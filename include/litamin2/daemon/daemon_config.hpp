@@ -5,6 +5,7 @@
 
 #include "litamin2/core/tracker_config.hpp"
 #include "litamin2/daemon/scan_merger.hpp"
+#include "litamin2/daemon/worker_scheduling.hpp"
 #include "litamin2/service/metrics_config.hpp"
 #include "litamin2/service/security_config.hpp"
 #include "litamin2/service/transport_config.hpp"
@@ -157,6 +158,9 @@ struct DaemonConfig {
   TrackerConfig tracker = daemon_tracker_defaults();
   /// Worker threads of the stream scheduler (StreamScheduler); 0 = one per core.
   int threads = 0;
+  /// The workers' scheduling class and CPUs (YAML scheduling: {policy, priority, cpus});
+  /// default: SCHED_OTHER, CPUs inherited, as any thread.
+  WorkerScheduling scheduling;
   /// Frames queued per stream before the oldest is dropped.
   int queue_depth = 4;
   OutputsConfig outputs;
@@ -178,7 +182,8 @@ struct DaemonConfig {
 /// an unknown log level, neither streams nor discovery, and invalid tracker sections; frame
 /// names that are empty, start with '/' or hold whitespace (tf2 refuses them), equal odom and
 /// base frames, and frame_prefix false with more than one stream or with discovery; an invalid
-/// member_id; sharding without discovery or with configured streams (every daemon would track
+/// member_id; an invalid scheduling section (worker_scheduling_error); sharding without
+/// discovery or with configured streams (every daemon would track
 /// them), and negative sharding times.
 void validate(const DaemonConfig& config);
 

@@ -8,10 +8,12 @@
 /// "Streams per daemon core"). A frame runs inside a oneTBB arena whose slots are all the
 /// workers' own (no oneTBB worker threads): a frame's nested parallel_for is shared with the
 /// other workers that are busy with frames (they steal its tasks while they wait in their own),
-/// and runs on its own thread when they are idle.
+/// and runs on its own thread when they are idle. The workers' scheduling class and CPUs are
+/// opt-in (worker_scheduling.hpp).
 
 #include "litamin2/daemon/frame.hpp"
 #include "litamin2/daemon/stream_queue.hpp"
+#include "litamin2/daemon/worker_scheduling.hpp"
 
 #include <tbb/task_arena.h>
 
@@ -63,8 +65,11 @@ class StreamScheduler {
   /// Identifies a stream in submit() and counters().
   using Handle = std::size_t;
 
-  /// `threads` workers (0 = one per core); `queue_depth` frames per stream (>= 1).
-  StreamScheduler(int threads, std::size_t queue_depth);
+  /// `threads` workers (0 = one per core); `queue_depth` frames per stream (>= 1); each worker
+  /// gets `scheduling` before any frame runs. Throws std::runtime_error (with the workers
+  /// stopped) when the scheduling cannot be applied, e.g. a real-time policy without
+  /// CAP_SYS_NICE.
+  StreamScheduler(int threads, std::size_t queue_depth, WorkerScheduling scheduling = {});
   /// Drops queued frames and waits for frames in processing.
   ~StreamScheduler();
 
@@ -88,6 +93,7 @@ class StreamScheduler {
 
   int threads() const { return threads_; }
   std::size_t queue_depth() const { return queue_depth_; }
+  const WorkerScheduling& scheduling() const { return scheduling_; }
   std::size_t stream_count() const;
   const std::string& stream_id(Handle stream) const;
   SchedulerCounters counters(Handle stream) const;
@@ -112,6 +118,7 @@ class StreamScheduler {
 
   int threads_;
   std::size_t queue_depth_;
+  WorkerScheduling scheduling_;
   tbb::task_arena arena_;
 
   /// Streams with a task to run, in the order they were scheduled.

@@ -86,9 +86,15 @@ DaemonNode::DaemonNode(DaemonConfig config) : config_(std::move(config)) {
     pattern_ = service::TopicPattern::parse(config_.discovery.pattern, &error);
     if (!pattern_) throw ConfigError("discovery.pattern: " + error);
   }
+  // The scheduling (opt-in) is applied before any thread of the node starts, so that with scope
+  // process Fast DDS's threads and the workers inherit it from this one: a real-time policy
+  // that the process may not use fails start-up, before DDS starts.
+  if (config_.scheduling.scope == SchedulingScope::kProcess)
+    apply_worker_scheduling(pthread_self(), config_.scheduling,
+                            "the daemon's threads (scope process)");
   // Trackers of configured streams are built first: an invalid config fails before DDS starts.
-  scheduler_ = std::make_unique<StreamScheduler>(config_.threads,
-                                                 static_cast<std::size_t>(config_.queue_depth));
+  scheduler_ = std::make_unique<StreamScheduler>(
+      config_.threads, static_cast<std::size_t>(config_.queue_depth), config_.scheduling);
   scheduler_->set_error_handler([](const std::string& stream, const std::string& what) {
     spdlog::error("stream {}: frame failed: {}", stream, what);
   });
