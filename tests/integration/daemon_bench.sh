@@ -20,7 +20,13 @@
 #   SENSOR=NAME  the simulator's sensor (default hdl64; vlp16 for VLP-16-size streams)
 #   JSON=FILE    write the run's figures as JSON: streams, rate_hz, frames_expected,
 #                frames_processed, dropped, latency_ms_p50 (median of the streams' p50),
-#                latency_ms_p99 (worst stream's p99), daemon_cpu_ms_per_frame (the daemon's
+#                latency_ms_p99 (worst stream's p99), e2e_latency_ms_p50 / _p99_all_frames /
+#                _p99_worst_stream (from each scan's slot in the replay's schedule to the probe's
+#                reception of its odometry: includes the transport and the wait before the
+#                daemon's receive thread takes the scan, which latency_ms_* leave out),
+#                replay_latest_start_ms and replay_writes_over_5ms_late (the replay's own delay:
+#                the latest write's start after its slot, and the writes over 5 ms late),
+#                daemon_cpu_ms_per_frame (the daemon's
 #                utime+stime from the first publication to the end, per frame processed),
 #                tracking_cpu_ms_per_frame (its trackers' thread CPU in Tracker::process, from
 #                the daemon's status), dds_path_cpu_ms_per_frame (their difference: taking,
@@ -28,10 +34,30 @@
 #                one run; daemon_threads_cpu_ms_per_frame (the same CPU split by thread:
 #                stream_worker = tracking + publishing, main, other = Fast DDS's receive and
 #                event threads); worker_run_delay_ms_per_frame (the workers' time waiting for
-#                a core while runnable, schedstat); with PIN=1
+#                a core while runnable, schedstat); daemon_threads_run_delay_ms_per_frame
+#                (the same by thread kind: the receive threads' wait comes before a scan's
+#                arrival is stamped, so the latency leaves it out); with PIN=1
 #                other_processes_share_of_daemon_core (CPU 1's busy time not the daemon's, over
 #                the wall time: other load that delays the daemon's frames); offline_cpu_ms_per_frame (the offline tool's wall time per frame, 1
 #                thread, for comparison)
+#   SCHEDULING=YAML  the daemon's worker scheduling, a YAML flow mapping written as its
+#                `scheduling:` key, e.g. '{policy: fifo, priority: 10}' (docs/deploy.md,
+#                "Real-time stream workers"); recorded in the JSON with the kernel's RT throttling
+#                (sched_rt_runtime_us / sched_rt_period_us, read, never changed)
+#   DAEMON_PREFIX=CMD  a command litamin2d is started under (after taskset), split on spaces,
+#                e.g. 'chrt -f 10': every thread of the process SCHED_FIFO 10, as systemd's
+#                CPUSchedulingPolicy=fifo / CPUSchedulingPriority=10 would set it; recorded in the
+#                JSON as daemon_prefix
+#   PUBLISHER_PREFIX=CMD  the same for the replay and the probe (after taskset), e.g.
+#                'chrt -f 10': other processes on CPU 0 then cannot delay the publication
+#                (a late replay publishes its scans in a burst); recorded as publisher_prefix
+#   PROBE_TIMEOUT=S  how long the probe waits for the odometry (default 60 + STREAMS * FRAMES / 20
+#                s): a run that drops frames ends after it
+#   CORE_LOAD=1  competing load on the daemon's core (needs PIN=1): one busy loop on CPU 1 at
+#                nice CORE_LOAD_NICE (default 10) in a session of its own (setsid: its own
+#                autogroup, as another login's or service's process), started before the
+#                daemon and killed when the run ends (bounded by timeout in any case); recorded
+#                in the JSON as core_load
 #   SEARCH=1     find the largest stream count with 0 dropped and p99 < P99_MS (default 20):
 #                doubles from STREAMS until a run fails, then bisects; each run's JSON in
 #                WORK_DIR/search/<n>.json and the answer in JSON (or printed)
@@ -56,6 +82,14 @@ if [ "${PIN:-0}" = 1 ]; then
   daemon_cpu=(taskset -c 1)
   replay_cpu=(taskset -c 0)
   threads=1
+fi
+daemon_prefix=()
+if [ -n "${DAEMON_PREFIX:-}" ]; then read -r -a daemon_prefix <<<"$DAEMON_PREFIX"; fi
+# PUBLISHER_PREFIX: the same for the replay and the probe (e.g. 'chrt -f 10', so that other
+# processes on CPU 0 do not delay the publication and bunch the scans).
+if [ -n "${PUBLISHER_PREFIX:-}" ]; then
+  read -r -a publisher_prefix <<<"$PUBLISHER_PREFIX"
+  replay_cpu+=("${publisher_prefix[@]}")
 fi
 
 if [ ! -f "seq/times.txt" ] || [ "$(ls seq/velodyne | wc -l)" -ne "$frames" ] ||
@@ -106,6 +140,7 @@ run_once() {
     echo "discovery: {enabled: false}"
     echo "threads: $threads"
     echo "queue_depth: ${QUEUE_DEPTH:-4}"
+    if [ -n "${SCHEDULING:-}" ]; then echo "scheduling: $SCHEDULING"; fi
     echo "outputs: {status_period_s: 0.5}"
     echo "streams:"
     for i in $(seq 1 "$n"); do
@@ -114,7 +149,16 @@ run_once() {
       ids+=("bench_$i")
     done
   } > "$dir/bench.yaml"
-  "${daemon_cpu[@]}" "$tools/litamin2d/litamin2d" --config "$dir/bench.yaml" > "$dir/daemon.log" 2>&1 &
+  local load_pid=""
+  if [ "${CORE_LOAD:-0}" = 1 ]; then
+    [ "${PIN:-0}" = 1 ] || { echo "CORE_LOAD=1 needs PIN=1" >&2; exit 1; }
+    # Bounded: the probe's timeout plus the replay's preload and a margin.
+    setsid taskset -c 1 nice -n "${CORE_LOAD_NICE:-10}" \
+      timeout $((180 + n * frames / 20)) sh -c 'while :; do :; done' &
+    load_pid=$!
+  fi
+  "${daemon_cpu[@]}" "${daemon_prefix[@]}" "$tools/litamin2d/litamin2d" --config "$dir/bench.yaml" \
+    > "$dir/daemon.log" 2>&1 &
   local daemon_pid=$!
   local probe_args=() replay_streams=() replay_dirs=()
   for id in "${ids[@]}"; do
@@ -124,7 +168,8 @@ run_once() {
   done
   rm -f "$dir/probe.ready"
   "${replay_cpu[@]}" "$build/tests/integration/daemon_probe" --domain 19 --expect "$frames" \
-    --timeout $((60 + n * frames / 20)) --ready-file "$dir/probe.ready" "${probe_args[@]}" \
+    --timeout "${PROBE_TIMEOUT:-$((60 + n * frames / 20))}" --ready-file "$dir/probe.ready" \
+    --arrivals-out "$dir/arrivals_" "${probe_args[@]}" \
     > "$dir/probe.log" 2>&1 &
   local probe_pid=$!
   for _ in $(seq 1 300); do [ -f "$dir/probe.ready" ] && break; sleep 0.1; done
@@ -166,6 +211,10 @@ run_once() {
     > "$dir/memory.txt" || true
   kill -TERM $daemon_pid
   wait $daemon_pid || true
+  if [ -n "$load_pid" ]; then
+    kill -TERM $load_pid 2>/dev/null || true
+    wait $load_pid 2>/dev/null || true
+  fi
   python3 - "$n" "$frames" "$start" "$end" "$offline_fps" "$cpu_start" "$cpu_end" \
     "$(getconf CLK_TCK)" "$rate" "$points_per_scan" "$dir" "$daemon_pid" "$core_start" "$core_end" <<'PY'
 import json, os, re, sys
@@ -200,18 +249,63 @@ def thread_ticks(path):
     return out
 t0, t1 = thread_ticks(out + "/threads_start.txt"), thread_ticks(out + "/threads_end.txt")
 pid = sys.argv[12]
-by_kind, worker_delay_ns = {}, 0.0
+by_kind, delay_by_kind = {}, {}
 for tid, (name, used, delay) in t1.items():
     kind = "main" if tid == pid else ("stream_worker" if name == "stream-worker" else "other")
     by_kind[kind] = by_kind.get(kind, 0.0) + used - t0.get(tid, (name, 0.0, 0.0))[1]
-    if kind == "stream_worker": worker_delay_ns += delay - t0.get(tid, (name, 0.0, 0.0))[2]
+    delay_by_kind[kind] = delay_by_kind.get(kind, 0.0) + delay - t0.get(tid, (name, 0.0, 0.0))[2]
+worker_delay_ns = delay_by_kind.get("stream_worker", 0.0)
 threads_ms = {k: v / ticks * 1000.0 / processed for k, v in by_kind.items()} if processed else None
+# The same run-queue wait for every kind of thread: the receive threads' ("other") is time a
+# scan waited before its arrival was stamped, which the latency does not include.
+threads_delay_ms = {k: v * 1e-6 / processed for k, v in delay_by_kind.items()} if processed else None
 # PIN=1: how busy the daemon's core was with other processes (its busy time minus the daemon's
 # CPU, over the wall time), and how long the workers waited for the core while they had a frame
 # to run (schedstat run delay: behind other processes or the daemon's own threads).
 core_start, core_end = float(sys.argv[13]), float(sys.argv[14])
 other_load = ((core_end - core_start) - (cpu_end - cpu_start)) / ticks / (end - start) \
     if core_end > 0 else None
+# End to end: each odometry's reception at the probe (system clock) minus its scan's slot in
+# the replay's schedule (logged by litamin2-replay: first slot, period, stagger), so the wait of
+# a scan before the daemon's receive thread takes it is included (the daemon's latency starts
+# after the conversion). Stream bench_k is the replay's stream k-1; the frame's index is its
+# stamp's line in seq/times.txt.
+e2e_p50 = e2e_p99_worst = e2e_p99_all = None
+sched = None
+# The replay's own lateness (its core taken from it): the latest write's start after its slot,
+# and the writes that started over 5 ms late, over all streams.
+replay_late_ms, replay_late_writes = None, 0
+for line in open(out + "/replay.log"):
+    m = re.search(r"latest start ([\d.]+) ms after its slot, (\d+) over 5 ms", line)
+    if m:
+        replay_late_ms = max(replay_late_ms or 0.0, float(m.group(1)))
+        replay_late_writes += int(m.group(2))
+for line in open(out + "/replay.log"):
+    m = re.search(r"schedule: first slot ([\d.]+) s since the epoch, period (\d+) ns, stagger (on|off)", line)
+    if m: sched = (float(m.group(1)), int(m.group(2)), m.group(3) == "on")
+if sched and os.path.exists("seq/times.txt"):
+    first, period_ns, stagger = sched
+    index = {round(float(t) * 1e6): i for i, t in enumerate(open("seq/times.txt").read().split())}
+    all_ms, worst = [], []
+    for k in range(1, n + 1):
+        path = f"{out}/arrivals_bench_{k}.txt"
+        if not os.path.exists(path): continue
+        offset_ns = (k - 1) * period_ns // n if stagger else 0
+        ms = []
+        for line in open(path):
+            recv, stamp = line.split()[:2]
+            sec, nsec = stamp.split(".")
+            i = index.get(round((int(sec) + int(nsec) * 1e-9) * 1e6))
+            if i is None: continue
+            ms.append((float(recv) - first - (offset_ns + i * period_ns) * 1e-9) * 1000.0)
+        if ms:
+            ms.sort(); all_ms += ms
+            worst.append(ms[min(len(ms) - 1, int(0.99 * len(ms)))])
+    if all_ms:
+        all_ms.sort()
+        e2e_p50 = all_ms[len(all_ms) // 2]
+        e2e_p99_all = all_ms[min(len(all_ms) - 1, int(0.99 * len(all_ms)))]
+        e2e_p99_worst = max(worst)
 result = {
     "streams": n, "rate_hz": rate if rate == "max" else float(rate), "points_per_scan": points,
     "frames_expected": expected, "frames_processed": processed,
@@ -220,19 +314,33 @@ result = {
     "latency_ms_p99": max(p99) if len(p99) == n else None,
     "daemon_cpu_ms_per_frame": daemon_ms, "tracking_cpu_ms_per_frame": tracking_ms,
     "offline_cpu_ms_per_frame": offline_ms,
+    "e2e_latency_ms_p50": e2e_p50, "e2e_latency_ms_p99_all_frames": e2e_p99_all,
+    "e2e_latency_ms_p99_worst_stream": e2e_p99_worst,
+    "replay_latest_start_ms": replay_late_ms, "replay_writes_over_5ms_late": replay_late_writes,
     "dds_path_cpu_ms_per_frame": daemon_ms - tracking_ms if processed else None,
     "dds_path_share_of_tracking": (daemon_ms - tracking_ms) / tracking_ms if processed and tracking_ms > 0 else None,
     "daemon_threads_cpu_ms_per_frame": threads_ms,
     "worker_run_delay_ms_per_frame": worker_delay_ns * 1e-6 / processed if processed else None,
+    "daemon_threads_run_delay_ms_per_frame": threads_delay_ms,
     "other_processes_share_of_daemon_core": other_load,
     "wall_s": end - start,
     "input": "plain_scan" if os.environ.get("ZERO_COPY", "0") == "1" else "pointcloud2",
+    "scheduling": os.environ.get("SCHEDULING") or "default (other)",
+    "daemon_prefix": os.environ.get("DAEMON_PREFIX") or None,
+    "publisher_prefix": os.environ.get("PUBLISHER_PREFIX") or None,
+    "sched_rt_runtime_us_of_period": [int(open("/proc/sys/kernel/sched_rt_" + k + "_us").read())
+                                      for k in ("runtime", "period")],
+    "core_load": ("busy loop on CPU 1, nice " + os.environ.get("CORE_LOAD_NICE", "10") +
+                  ", own session (autogroup)") if os.environ.get("CORE_LOAD", "0") == "1" else None,
+    "load_average_1min": float(open("/proc/loadavg").read().split()[0]),
 }
 json.dump(result, open(out + "/result.json", "w"), indent=1)
 fmt = lambda v, f="%.2f": "-" if v is None else f % v
 print(f"{n} stream(s) x {frames} frames ({points} points) at {rate}: {processed}/{expected} "
       f"processed, {result['dropped']} dropped, latency p50 {fmt(result['latency_ms_p50'], '%.1f')} ms, "
-      f"worst p99 {fmt(result['latency_ms_p99'], '%.1f')} ms; CPU per frame daemon "
+      f"worst p99 {fmt(result['latency_ms_p99'], '%.1f')} ms (slot to probe: p50 "
+      f"{fmt(e2e_p50, '%.1f')}, p99 {fmt(e2e_p99_all, '%.1f')}, worst stream's p99 "
+      f"{fmt(e2e_p99_worst, '%.1f')} ms); CPU per frame daemon "
       f"{fmt(daemon_ms)} ms, of it tracking {fmt(tracking_ms)} ms, DDS path "
       f"{fmt(result['dds_path_cpu_ms_per_frame'])} ms (by thread: "
       + (", ".join(f"{k} {v:.2f}" for k, v in sorted(threads_ms.items())) if threads_ms else "-")

@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <memory>
@@ -201,6 +202,17 @@ int main(int argc, char** argv) {
   for (const auto& stream : streams) total_frames += stream->frame_count();
   spdlog::info("publishing {} frames of {} stream(s)", total_frames, streams.size());
   const auto start = Clock::now() + std::chrono::milliseconds(10);
+  {
+    // The schedule on the system clock, so that a subscriber on this host can compute each
+    // scan's delay from its slot (tests/integration/daemon_bench.sh): stream s's frame i is due
+    // at start + i * period (+ s * period / streams with --stagger).
+    const auto system_start =
+        std::chrono::system_clock::now() +
+        std::chrono::duration_cast<std::chrono::system_clock::duration>(start - Clock::now());
+    spdlog::info("schedule: first slot {:.6f} s since the epoch, period {} ns, stagger {}",
+                 std::chrono::duration<double>(system_start.time_since_epoch()).count(),
+                 period.count(), options.stagger ? "on" : "off");
+  }
   std::vector<std::thread> threads;
   for (std::size_t s = 0; s < streams.size(); ++s) {
     const auto stream_start = options.stagger
@@ -257,10 +269,12 @@ int main(int argc, char** argv) {
             : 0.0;
     std::printf(
         "stream %s: %zu/%zu frames published, %zu failed, %zu retried, %.2f M points, %s in "
-        "%.2f s: %.2f frames/s, mean write %.2f ms%s\n",
+        "%.2f s: %.2f frames/s, mean write %.2f ms, latest start %.1f ms after its slot, %zu over "
+        "5 ms%s\n",
         stream->stream().c_str(), c.published.load(), stream->frame_count(), c.failed.load(),
         c.retried.load(), static_cast<double>(c.points) / 1e6, mb(c.bytes).c_str(),
-        stream->elapsed_s(), rate, write_ms,
+        stream->elapsed_s(), rate, write_ms, static_cast<double>(c.max_late_ns) / 1e6,
+        c.late_over_5ms.load(),
         stream->error().empty() ? "" : (" (stopped: " + stream->error() + ")").c_str());
     published += c.published;
     failed += c.failed;

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <thread>
 
@@ -52,6 +53,10 @@ void StreamPublisher::run(Clock::time_point start, std::chrono::nanoseconds peri
     }
     if (stop.load()) break;
     const auto before = Clock::now();
+    const auto late_ns = static_cast<std::uint64_t>(std::max<std::int64_t>(
+        0, std::chrono::duration_cast<std::chrono::nanoseconds>(before - slot).count()));
+    if (late_ns > counters_.max_late_ns) counters_.max_late_ns = late_ns;
+    if (late_ns > 5'000'000) counters_.late_over_5ms++;
     bool ok = false;
     if (plain_) {
       ok = write_plain(i, reliable, timeout_s, stop);

@@ -29,6 +29,10 @@ struct StreamCounters {
   std::atomic<std::uint64_t> bytes{0};
   /// Total time spent inside DataWriter::write (blocked on a full reliable history included).
   std::atomic<std::uint64_t> write_ns{0};
+  /// How late the latest write started after its slot in the schedule (the publisher's own
+  /// delay, e.g. its core taken by other processes), and the writes that started over 5 ms late.
+  std::atomic<std::uint64_t> max_late_ns{0};
+  std::atomic<std::size_t> late_over_5ms{0};
 };
 
 class StreamPublisher {
