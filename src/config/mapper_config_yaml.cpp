@@ -71,6 +71,8 @@ MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
   graph.read_range("local_max_keyframes", g.local_max_keyframes, 1, 1'000'000);
   graph.read_range("local_hops", g.local_hops, 0, 10'000);
   graph.read_range("local_hold_loops", g.local_hold_loops, 0, 1'000'000);
+  graph.read_range("local_max_free_keyframes", g.local_max_free_keyframes, 0, 1'000'000);
+  graph.read("local_widen_for_loops", g.local_widen_for_loops);
   graph.read_range("segment_keyframes", g.segment_keyframes, 1, 100'000);
   graph.read_range("max_iterations", g.max_iterations, 1, 10000);
   graph.read_range("threads", g.threads, 1, 256);
@@ -145,6 +147,8 @@ std::string mapper_config_to_yaml(const MapperConfig& c) {
   out << YAML::Key << "local_max_keyframes" << YAML::Value << c.graph.local_max_keyframes;
   out << YAML::Key << "local_hops" << YAML::Value << c.graph.local_hops;
   out << YAML::Key << "local_hold_loops" << YAML::Value << c.graph.local_hold_loops;
+  out << YAML::Key << "local_max_free_keyframes" << YAML::Value << c.graph.local_max_free_keyframes;
+  out << YAML::Key << "local_widen_for_loops" << YAML::Value << c.graph.local_widen_for_loops;
   out << YAML::Key << "segment_keyframes" << YAML::Value << c.graph.segment_keyframes;
   out << YAML::Key << "max_iterations" << YAML::Value << c.graph.max_iterations;
   out << YAML::Key << "threads" << YAML::Value << c.graph.threads;

@@ -55,6 +55,8 @@ class NodeSet {
   }
   bool count(std::uint32_t node) const { return in_[node] != 0; }
   std::size_t size() const { return members_.size(); }
+  /// The members in the order of insertion.
+  const std::vector<std::uint32_t>& members() const { return members_; }
   const std::vector<std::uint32_t>& sorted() {
     std::sort(members_.begin(), members_.end());
     return members_;
@@ -64,6 +66,72 @@ class NodeSet {
   std::vector<char> in_;
   std::vector<std::uint32_t> members_;
 };
+
+/// The part of the region `free` kept free under a bound of `limit` keyframes: the ends,
+/// `stretches` (each new loop's newer end's stream from its latest anchored keyframe on: the
+/// drift the loop corrects), every keyframe between two ends along a stream within the region
+/// (never an interior hinge), and of the rest (the ends' local_hops neighbourhoods) those
+/// nearest to an end by odometry edges along their streams, breadth first from every end at
+/// once (each end gets an equal depth), while fewer than `limit` are kept. The ends, the
+/// stretches and the keyframes between ends are kept even beyond the limit. The region is
+/// connected along its streams to the ends (graph_optimizer.hpp), so every member is reached.
+NodeSet nearest_free(const KeyframeGraph& graph, const NodeSet& free, const NodeSet& stretches,
+                     const std::vector<std::uint32_t>& ends, std::size_t limit) {
+  const StreamGroups& groups = graph.groups();
+  NodeSet kept(graph.size()), is_end(graph.size());
+  for (std::uint32_t n : stretches.members()) kept.insert(n);
+  for (std::uint32_t n : ends) is_end.insert(n);
+  // Between two ends: walk from each end in both directions within the region to the next.
+  std::vector<std::uint32_t> walked;
+  for (std::uint32_t n : ends) {
+    kept.insert(n);
+    const KeyframeNode& node = graph.node(n);
+    const auto& chain = groups.at(node.stream).nodes;
+    const auto at = chain.find(node.key.id);
+    walked.clear();
+    for (auto it = std::next(at); it != chain.end() && free.count(it->second); ++it) {
+      if (is_end.count(it->second)) {
+        for (std::uint32_t m : walked) kept.insert(m);
+        break;
+      }
+      walked.push_back(it->second);
+    }
+    walked.clear();
+    for (auto it = at; it != chain.begin();) {
+      --it;
+      if (!free.count(it->second)) break;
+      if (is_end.count(it->second)) {
+        for (std::uint32_t m : walked) kept.insert(m);
+        break;
+      }
+      walked.push_back(it->second);
+    }
+  }
+  // The outer tails, nearest first.
+  NodeSet seen(graph.size());
+  std::vector<std::uint32_t> frontier;
+  for (std::uint32_t n : ends)
+    if (seen.insert(n)) frontier.push_back(n);
+  while (!frontier.empty() && kept.size() < limit) {
+    std::vector<std::uint32_t> next;
+    for (std::uint32_t n : frontier) {
+      const KeyframeNode& node = graph.node(n);
+      const auto& chain = groups.at(node.stream).nodes;
+      const auto at = chain.find(node.key.id);
+      auto visit = [&](std::uint32_t m) {
+        if (!free.count(m) || !seen.insert(m)) return;
+        if (kept.count(m) || kept.size() < limit) {
+          kept.insert(m);
+          next.push_back(m);
+        }
+      };
+      if (at != chain.begin()) visit(std::prev(at)->second);
+      if (std::next(at) != chain.end()) visit(std::next(at)->second);
+    }
+    frontier.swap(next);
+  }
+  return kept;
+}
 
 }  // namespace
 
@@ -176,6 +244,8 @@ LocalOptimization GraphOptimizer::optimize_local(KeyframeGraph& graph, GraphLoop
     for (auto it = std::next(at); it != chain.end() && count < max_keyframes; ++it, ++count)
       free.insert(it->second);
   }
+  NodeSet stretches(0);
+  if (config_.graph.local_max_free_keyframes > 0) stretches = free;
   // And the chains around both ends of each new loop, local_hops odometry edges deep: the
   // correction spreads on both sides. Not through checked loops: where a fleet has revisited a
   // place many times, every keyframe has loops and their hops would reach a region as large
@@ -217,87 +287,140 @@ LocalOptimization GraphOptimizer::optimize_local(KeyframeGraph& graph, GraphLoop
   out.held_ends = static_cast<int>(
       std::count_if(held.begin(), held.end(), [&](std::uint32_t n) { return !free.count(n); }));
 
-  // The problem: free nodes, then every node an edge ties them to, fixed.
-  LocalProblem problem;
-  const std::vector<std::uint32_t>& free_nodes = free.sorted();
-  for (std::uint32_t n : free_nodes) problem.add(n, false);
-  std::vector<PoseGraphEdge> edges;
-  for (std::uint32_t n : free_nodes) {
-    const KeyframeNode& node = graph.node(n);
-    const auto& chain = groups.at(node.stream).nodes;
-    const auto at = chain.find(node.key.id);
-    if (at != chain.begin()) {
-      const std::uint32_t p = std::prev(at)->second;
-      if (!free.count(p)) {  // free predecessors add their edge as successors, below
-        PoseGraphEdge e = odometry_edge(graph.node(p), node);
-        e.from = problem.add(p, true);
-        e.to = problem.index.at(n);
+  // PoseGraphConfig::local_max_free_keyframes: only the keyframes nearest the new loops' ends
+  // stay free; the rest of the region is held fixed (the full pass moves it later).
+  const auto max_free = static_cast<std::size_t>(config_.graph.local_max_free_keyframes);
+  NodeSet whole(0);
+  if (max_free > 0 && free.size() > max_free) {
+    std::vector<std::uint32_t> ends;
+    for (std::uint32_t i : pending) ends.push_back(loops.nodes[i].second);
+    for (std::uint32_t i : pending)
+      if (free.count(loops.nodes[i].first)) ends.push_back(loops.nodes[i].first);
+    whole = free;
+    free = nearest_free(graph, whole, stretches, ends, max_free);
+    out.bounded = static_cast<int>(whole.size() - free.size());
+  }
+
+  // The problem over a set of free nodes: them, then every node an edge ties them to, fixed.
+  struct Region {
+    LocalProblem problem;
+    std::vector<PoseGraphEdge> edges;
+    std::vector<std::uint32_t> used_loops;
+    std::vector<Eigen::Isometry3d> start;
+  };
+  auto build = [&](NodeSet& free_set) {
+    Region r;
+    LocalProblem& problem = r.problem;
+    std::vector<PoseGraphEdge>& edges = r.edges;
+    const std::vector<std::uint32_t>& free_nodes = free_set.sorted();
+    for (std::uint32_t n : free_nodes) problem.add(n, false);
+    for (std::uint32_t n : free_nodes) {
+      const KeyframeNode& node = graph.node(n);
+      const auto& chain = groups.at(node.stream).nodes;
+      const auto at = chain.find(node.key.id);
+      if (at != chain.begin()) {
+        const std::uint32_t p = std::prev(at)->second;
+        if (!free_set.count(p)) {  // free predecessors add their edge as successors, below
+          PoseGraphEdge e = odometry_edge(graph.node(p), node);
+          e.from = problem.add(p, true);
+          e.to = problem.index.at(n);
+          edges.push_back(e);
+        }
+      }
+      if (std::next(at) != chain.end()) {
+        const std::uint32_t s = std::next(at)->second;
+        PoseGraphEdge e = odometry_edge(node, graph.node(s));
+        e.from = problem.index.at(n);
+        e.to = problem.add(s, !free_set.count(s));
         edges.push_back(e);
       }
     }
-    if (std::next(at) != chain.end()) {
-      const std::uint32_t s = std::next(at)->second;
-      PoseGraphEdge e = odometry_edge(node, graph.node(s));
-      e.from = problem.index.at(n);
-      e.to = problem.add(s, !free.count(s));
-      edges.push_back(e);
+    std::set<std::uint32_t> loop_ids(pending.begin(), pending.end());
+    for (std::uint32_t n : free_nodes) {
+      const auto it = loops.at_node.find(n);
+      if (it != loops.at_node.end()) loop_ids.insert(it->second.begin(), it->second.end());
     }
-  }
-  out.odometry_edges = static_cast<int>(edges.size());
-  std::set<std::uint32_t> loop_ids(pending.begin(), pending.end());
-  for (std::uint32_t n : free_nodes) {
-    const auto it = loops.at_node.find(n);
-    if (it != loops.at_node.end()) loop_ids.insert(it->second.begin(), it->second.end());
-  }
-  // Loops whose both ends are fixed add nothing.
-  std::vector<std::uint32_t> used_loops;
-  for (std::uint32_t i : loop_ids) {
-    const auto [from, to] = loops.nodes[i];
-    if (!free.count(from) && !free.count(to)) continue;
-    used_loops.push_back(i);
-    problem.add(from, !free.count(from));
-    problem.add(to, !free.count(to));
-  }
-  // A region with no fixed node (a group's whole graph) keeps its anchor's first keyframe.
-  if (std::find(problem.fixed.begin(), problem.fixed.end(), true) == problem.fixed.end()) {
-    for (std::size_t k = 0; k < problem.nodes.size(); ++k) {
-      const KeyframeNode& node = graph.node(problem.nodes[k]);
-      const StreamGroups::Stream& anchor = groups.at(groups.anchor_of(node.stream));
-      const auto first = anchor.nodes.begin();
-      if (first != anchor.nodes.end() && first->second == problem.nodes[k]) problem.fixed[k] = true;
+    // Loops whose both ends are fixed add nothing.
+    for (std::uint32_t i : loop_ids) {
+      const auto [from, to] = loops.nodes[i];
+      if (!free_set.count(from) && !free_set.count(to)) continue;
+      r.used_loops.push_back(i);
+      problem.add(from, !free_set.count(from));
+      problem.add(to, !free_set.count(to));
     }
-    // Not reached in a connected group (its anchor's first keyframe is in it); keep the
-    // gauge fixed all the same.
-    if (std::find(problem.fixed.begin(), problem.fixed.end(), true) == problem.fixed.end())
-      problem.fixed[0] = true;
-  }
+    // A region with no fixed node (a group's whole graph) keeps its anchor's first keyframe.
+    if (std::find(problem.fixed.begin(), problem.fixed.end(), true) == problem.fixed.end()) {
+      for (std::size_t k = 0; k < problem.nodes.size(); ++k) {
+        const KeyframeNode& node = graph.node(problem.nodes[k]);
+        const StreamGroups::Stream& anchor = groups.at(groups.anchor_of(node.stream));
+        const auto first = anchor.nodes.begin();
+        if (first != anchor.nodes.end() && first->second == problem.nodes[k])
+          problem.fixed[k] = true;
+      }
+      // Not reached in a connected group (its anchor's first keyframe is in it); keep the
+      // gauge fixed all the same.
+      if (std::find(problem.fixed.begin(), problem.fixed.end(), true) == problem.fixed.end())
+        problem.fixed[0] = true;
+    }
+    r.start.reserve(problem.nodes.size());
+    for (std::uint32_t n : problem.nodes) r.start.push_back(graph.node(n).pose);
+    return r;
+  };
 
-  std::vector<Eigen::Isometry3d> start;
-  start.reserve(problem.nodes.size());
-  for (std::uint32_t n : problem.nodes) start.push_back(graph.node(n).pose);
-
-  auto solve = [&](std::vector<Eigen::Isometry3d>& poses) {
-    std::vector<PoseGraphEdge> all = edges;
-    for (std::uint32_t i : used_loops) {
+  auto solve = [&](const Region& region, std::vector<Eigen::Isometry3d>& poses) {
+    std::vector<PoseGraphEdge> all = region.edges;
+    for (std::uint32_t i : region.used_loops) {
       PoseGraphEdge e = loop_edge(loops.edges[i], loops.checked[i]);
-      e.from = problem.index.at(loops.nodes[i].first);
-      e.to = problem.index.at(loops.nodes[i].second);
+      e.from = region.problem.index.at(loops.nodes[i].first);
+      e.to = region.problem.index.at(loops.nodes[i].second);
       all.push_back(e);
     }
-    out.loop_edges = static_cast<int>(used_loops.size());
-    poses = start;
-    return optimize_pose_graph(poses, problem.fixed, all, config_.graph);
+    out.loop_edges = static_cast<int>(region.used_loops.size());
+    poses = region.start;
+    return optimize_pose_graph(poses, region.problem.fixed, all, config_.graph);
   };
+  auto inconsistent_loops = [&](const Region& region, const std::vector<Eigen::Isometry3d>& poses) {
+    std::vector<std::uint32_t> inconsistent;
+    for (std::uint32_t i : pending) {
+      const auto [from, to] = loops.nodes[i];
+      if (!consistent(loops.edges[i], poses[region.problem.index.at(from)],
+                      poses[region.problem.index.at(to)]))
+        inconsistent.push_back(i);
+    }
+    return inconsistent;
+  };
+  Region region = build(free);
   std::vector<Eigen::Isometry3d> poses;
-  PoseGraphResult result = solve(poses);
+  PoseGraphResult result = solve(region, poses);
+  std::vector<std::uint32_t> inconsistent = inconsistent_loops(region, poses);
+  // A bounded region that cannot accommodate a new loop may be too small for the drift it
+  // corrects (PoseGraphConfig::local_widen_for_loops): the stretches of the whole region (runs
+  // of a stream) that hold those loops' ends are freed whole and the problem solved again;
+  // that decides.
+  if (!inconsistent.empty() && out.bounded > 0 && config_.graph.local_widen_for_loops) {
+    out.widened = true;
+    for (std::uint32_t i : inconsistent)
+      for (std::uint32_t end : {loops.nodes[i].first, loops.nodes[i].second}) {
+        if (!whole.count(end)) continue;
+        const KeyframeNode& node = graph.node(end);
+        const auto& chain = groups.at(node.stream).nodes;
+        const auto at = chain.find(node.key.id);
+        free.insert(end);
+        for (auto it = std::next(at); it != chain.end() && whole.count(it->second); ++it)
+          free.insert(it->second);
+        for (auto it = at; it != chain.begin() && whole.count(std::prev(it)->second);)
+          free.insert((--it)->second);
+      }
+    out.bounded = static_cast<int>(whole.size() - free.size());
+    region = build(free);
+    result = solve(region, poses);
+    inconsistent = inconsistent_loops(region, poses);
+  }
+  const LocalProblem& problem = region.problem;
+  std::vector<std::uint32_t>& used_loops = region.used_loops;
+  out.odometry_edges = static_cast<int>(region.edges.size());
   // New loops that the region cannot accommodate are dropped and the region solved again
   // without them, from the poses before.
-  std::vector<std::uint32_t> inconsistent;
-  for (std::uint32_t i : pending) {
-    const auto [from, to] = loops.nodes[i];
-    if (!consistent(loops.edges[i], poses[problem.index.at(from)], poses[problem.index.at(to)]))
-      inconsistent.push_back(i);
-  }
   if (!inconsistent.empty()) {
     // Unchecked loops are the last ones: erasing them moves no checked loop's index.
     for (auto it = inconsistent.rbegin(); it != inconsistent.rend(); ++it) {
@@ -319,7 +442,7 @@ LocalOptimization GraphOptimizer::optimize_local(KeyframeGraph& graph, GraphLoop
       kept.push_back(i - static_cast<std::uint32_t>(shift));
     }
     used_loops = kept;
-    result = solve(poses);
+    result = solve(region, poses);
   }
   if (result.diverged) ++stats.diverged;
   if (result.usable) {
@@ -330,6 +453,7 @@ LocalOptimization GraphOptimizer::optimize_local(KeyframeGraph& graph, GraphLoop
   out.ran = true;
   out.keyframes = static_cast<int>(problem.nodes.size());
   out.fixed = static_cast<int>(std::count(problem.fixed.begin(), problem.fixed.end(), true));
+  out.free = out.keyframes - out.fixed;
   out.iterations = result.iterations;
   out.initial_cost = result.initial_cost;
   out.final_cost = result.final_cost;

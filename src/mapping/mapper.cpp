@@ -204,6 +204,9 @@ OptimizeSummary Mapper::optimize() {
   summary.loop_edges = local.loop_edges;
   summary.iterations = local.iterations;
   summary.held_ends = local.held_ends;
+  summary.free_keyframes = local.free;
+  summary.bounded_keyframes = local.bounded;
+  summary.widened = local.widened;
   summary.initial_cost = local.initial_cost;
   summary.final_cost = local.final_cost;
   summary.milliseconds = elapsed_ms(start);

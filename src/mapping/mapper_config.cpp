@@ -32,6 +32,8 @@ void validate(const MapperConfig& c) {
   require(c.graph.local_max_keyframes >= 1, "pose_graph.local_max_keyframes must be >= 1");
   require(c.graph.local_hops >= 0, "pose_graph.local_hops must be >= 0");
   require(c.graph.local_hold_loops >= 0, "pose_graph.local_hold_loops must be >= 0");
+  require(c.graph.local_max_free_keyframes >= 0,
+          "pose_graph.local_max_free_keyframes must be >= 0 (0 = no bound)");
   require(c.graph.segment_keyframes >= 1, "pose_graph.segment_keyframes must be >= 1");
 }
 

@@ -58,6 +58,9 @@ TEST(MappingConfig, BadKeysAndValuesAreNamed) {
             std::string::npos);
   EXPECT_NE(message("pose_graph: {local_hold_loops: -1}").find("pose_graph.local_hold_loops"),
             std::string::npos);
+  EXPECT_NE(message("pose_graph: {local_max_free_keyframes: -1}")
+                .find("pose_graph.local_max_free_keyframes"),
+            std::string::npos);
   EXPECT_NE(message("pose_graph: {odometry_covariance: hessian}")
                 .find("pose_graph.odometry_covariance: 'hessian' is not one of: distance, tracker"),
             std::string::npos);

@@ -62,6 +62,8 @@ struct Options {
   double search_spacing = 10.0;
   double loop_spacing = 0.0;
   int local_hold_loops = mapping::PoseGraphConfig{}.local_hold_loops;
+  int local_max_free_keyframes = mapping::PoseGraphConfig{}.local_max_free_keyframes;
+  bool local_widen_for_loops = mapping::PoseGraphConfig{}.local_widen_for_loops;
   double verification_budget = mapping::PlaceRecognitionConfig{}.verification_budget_per_keyframe;
   double proximity_max_descriptor_distance =
       mapping::PlaceRecognitionConfig{}.proximity_max_descriptor_distance;
@@ -155,6 +157,11 @@ int main(int argc, char** argv) {
   app.add_option("--loop-spacing", o.loop_spacing, "place_recognition.loop_spacing, metres");
   app.add_option("--local-hold-loops", o.local_hold_loops, "pose_graph.local_hold_loops")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--local-max-free-keyframes", o.local_max_free_keyframes,
+                 "pose_graph.local_max_free_keyframes (0 = no bound)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--local-widen-for-loops", o.local_widen_for_loops,
+                 "pose_graph.local_widen_for_loops (0 or 1)");
   app.add_option("--verification-budget", o.verification_budget,
                  "place_recognition.verification_budget_per_keyframe")
       ->check(CLI::NonNegativeNumber);
@@ -198,6 +205,8 @@ int main(int argc, char** argv) {
   mapper.place.search_spacing = o.search_spacing;
   mapper.place.loop_spacing = o.loop_spacing;
   mapper.graph.local_hold_loops = o.local_hold_loops;
+  mapper.graph.local_max_free_keyframes = o.local_max_free_keyframes;
+  mapper.graph.local_widen_for_loops = o.local_widen_for_loops;
   mapper.place.verification_budget_per_keyframe = o.verification_budget;
   mapper.place.proximity_max_descriptor_distance = o.proximity_max_descriptor_distance;
   mapper.graph.segment_keyframes = o.segment_keyframes;
@@ -286,7 +295,8 @@ int main(int argc, char** argv) {
     double last_poses_cpu = 0.0, last_summary_cpu = 0.0, last_tiles_cpu = 0.0;
     // The local optimisations since the last report: solves, keyframes, loop edges, iterations.
     std::size_t local_solves = 0, local_keyframes = 0, local_loop_edges = 0, local_iterations = 0,
-                local_held = 0;
+                local_held = 0, local_free = 0, local_bounded = 0, local_bounded_solves = 0,
+                local_widened = 0;
     // On the mapping thread after each turn: its CPU, loop latencies and a report per 10k.
     worker.observe([&](const TurnReport& turn) {
       keyframes += turn.added;
@@ -296,6 +306,10 @@ int main(int argc, char** argv) {
         local_loop_edges += static_cast<std::size_t>(turn.optimization.loop_edges);
         local_iterations += static_cast<std::size_t>(turn.optimization.iterations);
         local_held += static_cast<std::size_t>(turn.optimization.held_ends);
+        local_free += static_cast<std::size_t>(turn.optimization.free_keyframes);
+        local_bounded += static_cast<std::size_t>(turn.optimization.bounded_keyframes);
+        if (turn.optimization.bounded_keyframes > 0) ++local_bounded_solves;
+        if (turn.optimization.widened) ++local_widened;
       }
       batches.emplace_back(keyframes, turn.cpu_s);
       loop_latency_ms.insert(loop_latency_ms.end(), turn.loop_latency_ms.begin(),
@@ -342,19 +356,22 @@ int main(int argc, char** argv) {
           ts.segment_spill_writes - last_ts.segment_spill_writes,
           static_cast<double>(ts.segment_spill_bytes) / 1048576.0, ts.segment_bytes / 1048576.0);
       const double solves = static_cast<double>(std::max<std::size_t>(local_solves, 1));
-      std::fprintf(stderr,
-                   "  local solves %zu: per solve %.0f keyframes, %.0f loop edges, %.1f "
-                   "iterations, %.1f older ends held; proximity candidates %zu verified "
-                   "(%zu accepted), %zu skipped by descriptor; %zu searches over budget\n",
-                   local_solves, static_cast<double>(local_keyframes) / solves,
-                   static_cast<double>(local_loop_edges) / solves,
-                   static_cast<double>(local_iterations) / solves,
-                   static_cast<double>(local_held) / solves,
-                   ms.proximity_candidates - last_ms.proximity_candidates,
-                   ms.proximity_verified - last_ms.proximity_verified,
-                   ms.proximity_skipped - last_ms.proximity_skipped,
-                   ms.searches_over_budget - last_ms.searches_over_budget);
-      local_solves = local_keyframes = local_loop_edges = local_iterations = local_held = 0;
+      std::fprintf(
+          stderr,
+          "  local solves %zu: per solve %.0f keyframes (%.0f free, %.0f held by the "
+          "bound in %zu solves, %zu widened), %.0f loop edges, %.1f "
+          "iterations, %.1f older ends held; proximity candidates %zu verified "
+          "(%zu accepted), %zu skipped by descriptor; %zu searches over budget\n",
+          local_solves, static_cast<double>(local_keyframes) / solves,
+          static_cast<double>(local_free) / solves, static_cast<double>(local_bounded) / solves,
+          local_bounded_solves, local_widened, static_cast<double>(local_loop_edges) / solves,
+          static_cast<double>(local_iterations) / solves, static_cast<double>(local_held) / solves,
+          ms.proximity_candidates - last_ms.proximity_candidates,
+          ms.proximity_verified - last_ms.proximity_verified,
+          ms.proximity_skipped - last_ms.proximity_skipped,
+          ms.searches_over_budget - last_ms.searches_over_budget);
+      local_solves = local_keyframes = local_loop_edges = local_iterations = local_held =
+          local_free = local_bounded = local_bounded_solves = local_widened = 0;
       last_ts = ts;
       last_ms = ms;
       last_in = in;
@@ -512,6 +529,8 @@ int main(int argc, char** argv) {
   const Json summary = {
       {"vehicles", o.vehicles},
       {"local_hold_loops", o.local_hold_loops},
+      {"local_max_free_keyframes", o.local_max_free_keyframes},
+      {"local_widen_for_loops", o.local_widen_for_loops},
       {"loop_spacing", o.loop_spacing},
       {"verification_budget_per_keyframe", o.verification_budget},
       {"proximity_max_descriptor_distance", o.proximity_max_descriptor_distance},

@@ -8,6 +8,11 @@
 ///   New loops the region cannot fit within loop_consistency_sigmas are dropped (as before).
 ///   With local_hold_loops, an older end already held by that many checked loops near it
 ///   stays constant and spreads nothing (the newer end's region takes the correction).
+///   With local_max_free_keyframes, the ends' neighbourhoods are trimmed to the keyframes
+///   nearest the ends until that many are free (the stretches since the latest earlier loops
+///   and the keyframes between two ends always are); the rest is held fixed (the full pass
+///   moves it). With local_widen_for_loops, a bounded solve that cannot fit a new loop frees
+///   the whole stretches holding its ends and is solved again before the loop is dropped.
 /// - full pass (in the background): every stream cut into rigid segments of
 ///   segment_keyframes consecutive keyframes, one node each, with the odometry and checked
 ///   loop edges between segments; one fixed segment per group. The problem is a copy
@@ -44,8 +49,15 @@ struct GraphLoops {
 
 struct LocalOptimization {
   bool ran = false;
+  /// Keyframes in the problem: free (solved) and fixed.
   int keyframes = 0;
   int fixed = 0;
+  int free = 0;
+  /// Keyframes of the region held fixed by PoseGraphConfig::local_max_free_keyframes.
+  int bounded = 0;
+  /// The bounded region could not accommodate a new loop: solved again, widened
+  /// (PoseGraphConfig::local_widen_for_loops).
+  bool widened = false;
   int odometry_edges = 0;
   int loop_edges = 0;
   int iterations = 0;

@@ -46,6 +46,12 @@ struct OptimizeSummary {
   int iterations = 0;
   /// Older loop ends held constant by the local optimisation (local_hold_loops).
   int held_ends = 0;
+  /// Keyframes solved (free) by the local optimisation, and those of its region held fixed
+  /// by local_max_free_keyframes.
+  int free_keyframes = 0;
+  int bounded_keyframes = 0;
+  /// A bounded region could not accommodate a new loop, so it was widened and solved again.
+  bool widened = false;
   double initial_cost = 0.0;
   double final_cost = 0.0;
   double milliseconds = 0.0;

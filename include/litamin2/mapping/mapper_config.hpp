@@ -165,6 +165,23 @@ struct PoseGraphConfig {
   /// loops, and freeing it brought every one of them (and their other ends) into the problem;
   /// the full pass spreads the correction further. 0 = every older end is freed.
   int local_hold_loops = 2;
+  /// At most this many keyframes are solved (free) in a local optimisation, where the region
+  /// above allows: always the new loops' ends, each new loop's stream stretch (its newer
+  /// end's stream from the latest anchored keyframe before it on: the drift it corrects), and
+  /// every keyframe between two ends along a stream; of the rest (the ends' local_hops
+  /// neighbourhoods) those nearest an end by odometry edges along their streams (breadth
+  /// first from every end at once) up to the bound. The rest of the region is held fixed like
+  /// its neighbours, and the full pass moves it (see local_widen_for_loops). In a fleet whose
+  /// every place has been revisited, each batch brings ~10 new loops whose regions and
+  /// earlier loops made solves of ~700 keyframes by 5x10^4 (~60 at the start), ~85 % of
+  /// them those stretches: bounding them drops loops, so the default is 0 = no bound
+  /// (docs/benchmarks.md, "Bounded local regions").
+  int local_max_free_keyframes = 0;
+  /// A bounded local solve (local_max_free_keyframes) that cannot fit a new loop within
+  /// loop_consistency_sigmas frees the region's whole stretches (runs of a stream) that hold
+  /// that loop's ends and is solved again before the loop is dropped; false: the bounded
+  /// region decides (one solve; loops that only the larger region fits are dropped).
+  bool local_widen_for_loops = true;
   /// The full pass (Mapper::optimize_full, in the aggregator on a background thread) moves
   /// runs of this many consecutive keyframes of a stream as one rigid segment (1 = every
   /// keyframe its own node): its cost and memory are those of a graph this many times
