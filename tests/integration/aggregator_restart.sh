@@ -2,7 +2,9 @@
 # kill -9 of litamin2-aggregator mid-ingest, restart, continue: the final store holds every
 # keyframe and its export rebuilt from the keyframes (`export --replay`: map PLY,
 # trajectories) equals an uninterrupted run's byte for byte; the stored graph the restarted
-# aggregator recovered from its tables (plain `export`) has every keyframe too.
+# aggregator recovered from its tables (plain `export`) has every keyframe too. The restarted
+# aggregator publishes its poses in chunks (publish.poses_chunk_keyframes), and a reader that
+# joins late receives every chunk.
 # Duplicate, late and reversed patches on the way. In a private network namespace, loopback
 # profile. Usage: aggregator_restart.sh BUILD_DIR WORK_DIR SOURCE_DIR
 set -euo pipefail
@@ -26,11 +28,11 @@ trap cleanup EXIT
 echo "== simulate $frames scans of the loop"
 "$sim" --builtin loop --frames 0:$frames --output seq > sim.log 2>&1 || { cat sim.log; exit 1; }
 
-config() {  # config FILE STORE
+config() {  # config FILE STORE [POSES_CHUNK_KEYFRAMES]
   cat > "$1" <<YAML
 dds: {domain: $domain, profile: loopback}
 store: {path: $2}
-publish: {poses_period_s: 0.2, summary_period_s: 1, status_period_s: 0.5}
+publish: {poses_period_s: 0.2, summary_period_s: 1, status_period_s: 0.5, poses_chunk_keyframes: ${3:-0}}
 log_level: info
 YAML
 }
@@ -66,7 +68,9 @@ stop_aggregator
 cat export_a.log
 
 echo "== B: killed with SIGKILL mid-ingest, restarted, fed the rest reversed and duplicated"
-config b.yaml b.db
+# B publishes its poses in chunks of 4 keyframe ids (one KeyframePoses instance each): the
+# probes, late joiners, must still receive every keyframe.
+config b.yaml b.db 4
 start_aggregator b.yaml b.log
 half=$((k / 2))
 # The first half, slowly: the writer stays up, as a daemon's would (transient-local history).
@@ -96,6 +100,11 @@ recovered=$(grep -o "[0-9]* keyframe(s) of [0-9]* stream(s) recovered" b.log | t
 "$probe" --domain $domain poses --stream car_a --stream car_b --expect "$k" --timeout 120 \
   > poses_b.log 2>&1 || { cat poses_b.log b.log; exit 1; }
 cat poses_b.log
+chunks=$(( (k + 3) / 4 ))
+for s in car_a car_b; do
+  grep -q "poses $s: $k keyframes in .* ($chunks chunks)" poses_b.log ||
+    { echo "$s: expected $k keyframes in $chunks chunks"; exit 1; }
+done
 kill -9 "$first" 2>/dev/null || true
 stop_aggregator
 "$aggregator" export --replay --store b.db --map b.ply --trajectories traj_b 2> export_b.log ||

@@ -75,9 +75,9 @@ struct PublishConfig {
   /// seconds, in chunks of ...
   double poses_period_s = 1.0;
   /// ... this many consecutive keyframe ids of a stream: a publication sends again only the
-  /// chunks holding a keyframe that changed. 0: one chunk per stream (every keyframe of it),
-  /// what KeyframePoses carries today (keyed by stream only); the DDS node refuses > 0 until
-  /// the message has a chunk key.
+  /// chunks holding a keyframe that changed (KeyframePoses is keyed by stream and chunk, so a
+  /// late joiner still gets every chunk). 0: one chunk per stream (every keyframe of it, sent
+  /// whole whenever one of them moves).
   int poses_chunk_keyframes = 0;
   /// The map summary (made from the tile index) is published at most this often (when
   /// changed), seconds.

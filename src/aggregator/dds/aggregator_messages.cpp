@@ -16,6 +16,8 @@ using dds::key_value;
 litamin2::msg::KeyframePoses to_keyframe_poses_msg(const StreamPoses& poses) {
   litamin2::msg::KeyframePoses msg;
   msg.stream_id(poses.stream);
+  msg.chunk(poses.chunk);
+  msg.chunk_keyframes(poses.chunk_keyframes);
   msg.frame_id(poses.in_map_frame ? std::string(kMapFrame) : poses.anchor + "/odom");
   msg.anchor_stream(poses.anchor);
   msg.in_map_frame(poses.in_map_frame);

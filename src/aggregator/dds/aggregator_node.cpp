@@ -42,6 +42,12 @@ fdds::DataWriterQos latest_per_instance_qos() {
   return dds::latest_per_instance_writer_qos(10'000);  // one instance per stream
 }
 
+/// KeyframePoses: one instance per stream chunk (publish.poses_chunk_keyframes), e.g. 100
+/// vehicles of 10^4 keyframes in chunks of 256: 4,000.
+fdds::DataWriterQos keyframe_poses_qos() {
+  return dds::latest_per_instance_writer_qos(100'000);
+}
+
 dds::PatchConversionOptions patch_options(const AggregatorConfig& config) {
   dds::PatchConversionOptions options;
   options.max_distributions = static_cast<std::size_t>(config.limits.max_distributions_per_patch);
@@ -93,10 +99,6 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
       writer_partitions_(config_.topics.map_patches),
       listener_(queue_, patch_options(config_), &writer_partitions_),
       relay_(std::chrono::milliseconds(std::llround(config_.publish.map_frame_settle_s * 1000.0))) {
-  // KeyframePoses is keyed by stream only: chunks of a stream would replace each other.
-  if (config_.publish.poses_chunk_keyframes != 0)
-    throw std::invalid_argument(
-        "publish.poses_chunk_keyframes: must be 0 (one KeyframePoses instance per stream)");
   store::StoreOptions options;
   options.synchronous_full = config_.store.synchronous_full;
   CoreOptions core_options;
@@ -149,7 +151,7 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
   // unkeyed topic that the daemons' odom -> base_link transforms share, so an exclusive rt/tf
   // would hide either those or the standby's map -> odom from every reader.
   fdds::DataWriter* poses_writer = publisher_->create_datawriter(
-      topic(config_.topics.keyframe_poses, poses_type_), output_qos(latest_per_instance_qos()));
+      topic(config_.topics.keyframe_poses, poses_type_), output_qos(keyframe_poses_qos()));
   fdds::DataWriter* summary_writer = publisher_->create_datawriter(
       topic(config_.topics.map_summary, summary_type_), output_qos(latest_per_instance_qos()));
   status_writer_ = publisher_->create_datawriter(topic(config_.topics.status, status_type_),

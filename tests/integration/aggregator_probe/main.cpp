@@ -12,7 +12,8 @@
 //  poses: reads rt/litamin2/keyframe_poses until every --stream has --expect keyframes (exit 0)
 //    or --timeout passes (exit 1); prints each stream's count and frame. --exclusive reads with
 //    EXCLUSIVE ownership (aggregators in hot standby); --log FILE writes one line per sample
-//    received: wall-clock ns, stream, keyframes, and the writer's GUID (which aggregator).
+//    received: wall-clock ns, stream, the stream's keyframes (over the latest sample of each of
+//    its chunks), the writer's GUID (which aggregator) and the sample's chunk.
 
 #include "litamin2/core/tracker.hpp"
 #include "litamin2/dds/map_patch_conversion.hpp"
@@ -82,19 +83,30 @@ class PosesListener : public fdds::DataReaderListener {
     while (reader->take_next_sample(&msg, &info) == ReturnCode_t::RETCODE_OK) {
       if (!info.valid_data) continue;
       std::lock_guard lock(mutex);
-      latest[msg.stream_id()] = {msg.keyframes().size(), msg.frame_id()};
+      latest[msg.stream_id()][msg.chunk()] = {msg.keyframes().size(), msg.frame_id()};
       if (log_) {
         const auto now = std::chrono::duration_cast<std::chrono::nanoseconds>(
             std::chrono::system_clock::now().time_since_epoch());
-        std::fprintf(log_, "%lld %s %zu %s\n", static_cast<long long>(now.count()),
-                     msg.stream_id().c_str(), msg.keyframes().size(),
-                     writer_guid(info.publication_handle).c_str());
+        std::fprintf(log_, "%lld %s %zu %s %llu\n", static_cast<long long>(now.count()),
+                     msg.stream_id().c_str(), keyframes(msg.stream_id()),
+                     writer_guid(info.publication_handle).c_str(),
+                     static_cast<unsigned long long>(msg.chunk()));
         std::fflush(log_);
       }
     }
   }
+  /// A stream's keyframes: the sum over the latest sample of each of its chunks (call with
+  /// the mutex held).
+  std::size_t keyframes(const std::string& stream) const {
+    const auto it = latest.find(stream);
+    if (it == latest.end()) return 0;
+    std::size_t n = 0;
+    for (const auto& [chunk, entry] : it->second) n += entry.first;
+    return n;
+  }
   std::mutex mutex;
-  std::map<std::string, std::pair<std::size_t, std::string>> latest;
+  /// Per stream, per chunk of its keyframe ids (KeyframePoses.chunk): keyframes and frame.
+  std::map<std::string, std::map<std::uint64_t, std::pair<std::size_t, std::string>>> latest;
 
  private:
   std::FILE* log_;
@@ -227,7 +239,8 @@ int main(int argc, char** argv) {
   bool exclusive = false;
   std::string sample_log;
   poses->add_flag("--exclusive", exclusive, "EXCLUSIVE ownership (aggregators in hot standby)");
-  poses->add_option("--log", sample_log, "one line per sample: wall ns, stream, keyframes, writer");
+  poses->add_option("--log", sample_log,
+                    "one line per sample: wall ns, stream, keyframes, writer, chunk");
   CLI11_PARSE(app, argc, argv);
 
   litamin2::dds::ParticipantPtr participant =
@@ -256,15 +269,15 @@ int main(int argc, char** argv) {
     while (!done && Clock::now() < deadline) {
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
       std::lock_guard lock(listener.mutex);
-      done = std::all_of(pose_streams.begin(), pose_streams.end(), [&](const std::string& s) {
-        auto it = listener.latest.find(s);
-        return it != listener.latest.end() && it->second.first >= expect;
-      });
+      done = std::all_of(pose_streams.begin(), pose_streams.end(),
+                         [&](const std::string& s) { return listener.keyframes(s) >= expect; });
     }
     {
       std::lock_guard lock(listener.mutex);
-      for (const auto& [s, v] : listener.latest)
-        std::printf("poses %s: %zu keyframes in %s\n", s.c_str(), v.first, v.second.c_str());
+      // The frame of the chunk with the newest keyframes.
+      for (const auto& [s, chunks] : listener.latest)
+        std::printf("poses %s: %zu keyframes in %s (%zu chunks)\n", s.c_str(),
+                    listener.keyframes(s), chunks.rbegin()->second.second.c_str(), chunks.size());
     }
     participant.reset();
     if (log) std::fclose(log);
