@@ -40,6 +40,9 @@
 #                other_processes_share_of_daemon_core (CPU 1's busy time not the daemon's, over
 #                the wall time: other load that delays the daemon's frames); offline_cpu_ms_per_frame (the offline tool's wall time per frame, 1
 #                thread, for comparison)
+#   TRACKER=YAML the tracker's config (over the defaults), a YAML flow mapping written as the
+#                daemon's `tracker:` key and given to the offline run (--config), e.g.
+#                '{recovery: {first_speeds: []}}'; recorded in the JSON as tracker
 #   SCHEDULING=YAML  the daemon's worker scheduling, a YAML flow mapping written as its
 #                `scheduling:` key, e.g. '{policy: fifo, priority: 10}' (docs/deploy.md,
 #                "Real-time stream workers"); recorded in the JSON with the kernel's RT throttling
@@ -99,9 +102,17 @@ if [ ! -f "seq/times.txt" ] || [ "$(ls seq/velodyne | wc -l)" -ne "$frames" ] ||
     > sim.log 2>&1
   echo "$sensor" > seq/sensor
 fi
-if [ ! -f offline/stats.json ]; then
+# The offline run with the same tracker config as the daemon (TRACKER), redone when it changes.
+tracker_args=()
+if [ -n "${TRACKER:-}" ]; then
+  echo "$TRACKER" > tracker.yaml
+  tracker_args=(--config "$work/tracker.yaml")
+fi
+if [ ! -f offline/stats.json ] || [ "$(cat offline/tracker.txt 2>/dev/null)" != "${TRACKER:-}" ]; then
+  rm -rf offline
   "${daemon_cpu[@]}" "$tools/odometry/litamin2-odometry" seq --output offline --threads 1 --quiet \
-    > odometry.log 2>&1
+    "${tracker_args[@]}" > odometry.log 2>&1
+  echo "${TRACKER:-}" > offline/tracker.txt
 fi
 read -r offline_fps points_per_scan < <(python3 -c "
 import json, os
@@ -141,6 +152,7 @@ run_once() {
     echo "threads: $threads"
     echo "queue_depth: ${QUEUE_DEPTH:-4}"
     if [ -n "${SCHEDULING:-}" ]; then echo "scheduling: $SCHEDULING"; fi
+    if [ -n "${TRACKER:-}" ]; then echo "tracker: $TRACKER"; fi
     echo "outputs: {status_period_s: 0.5}"
     echo "streams:"
     for i in $(seq 1 "$n"); do
@@ -326,6 +338,7 @@ result = {
     "wall_s": end - start,
     "input": "plain_scan" if os.environ.get("ZERO_COPY", "0") == "1" else "pointcloud2",
     "scheduling": os.environ.get("SCHEDULING") or "default (other)",
+    "tracker": os.environ.get("TRACKER") or "default",
     "daemon_prefix": os.environ.get("DAEMON_PREFIX") or None,
     "publisher_prefix": os.environ.get("PUBLISHER_PREFIX") or None,
     "sched_rt_runtime_us_of_period": [int(open("/proc/sys/kernel/sched_rt_" + k + "_us").read())
