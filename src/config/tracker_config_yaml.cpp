@@ -165,6 +165,7 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node, const TrackerConf
   recovery.read("trigger_ratio", rec.trigger_ratio);
   read_numbers(recovery, "motion_scales", rec.motion_scales);
   read_numbers(recovery, "first_speeds", rec.first_speeds);
+  recovery.read("first_speeds_max_travel", rec.first_speeds_max_travel);
   recovery.read("min_gain", rec.min_gain);
   recovery.read("share_smoothing", rec.share_smoothing);
   read_managed(recovery, "reset_ratio", rec.reset_ratio);
@@ -275,6 +276,8 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "trigger_ratio" << YAML::Value << c.recovery.trigger_ratio;
   out << YAML::Key << "motion_scales" << YAML::Value << YAML::Flow << c.recovery.motion_scales;
   out << YAML::Key << "first_speeds" << YAML::Value << YAML::Flow << c.recovery.first_speeds;
+  out << YAML::Key << "first_speeds_max_travel" << YAML::Value
+      << c.recovery.first_speeds_max_travel;
   out << YAML::Key << "min_gain" << YAML::Value << c.recovery.min_gain;
   out << YAML::Key << "share_smoothing" << YAML::Value << c.recovery.share_smoothing;
   out << YAML::Key << "reset_ratio" << YAML::Value << c.recovery.reset_ratio;

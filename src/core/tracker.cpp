@@ -143,6 +143,11 @@ Eigen::Isometry3d Tracker::registration_start(const PointCloud& scan, double mot
   spent.voxelize_ms += at_rest.voxelize_ms;
   spent.register_ms += at_rest.register_ms;
   const double rest_share = at_rest.result.valid ? inlier_share(at_rest) : 0.0;
+  // A registration that travelled from rest found a motion; one that stayed near it may be stuck.
+  if (at_rest.result.valid && recovery.first_speeds_max_travel > 0.0 &&
+      (predicted.inverse() * at_rest.result.pose).translation().norm() >=
+          recovery.first_speeds_max_travel)
+    return predicted;
   Eigen::Isometry3d best = predicted;
   double best_share = rest_share;
   for (double speed : recovery.first_speeds) {

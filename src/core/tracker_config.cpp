@@ -98,6 +98,9 @@ void validate(const TrackerConfig& c) {
   for (double v : rec.first_speeds)
     require(std::isfinite(v) && std::abs(v) <= 100.0, "recovery.first_speeds", v,
             "each within +-100 m/s");
+  require(std::isfinite(rec.first_speeds_max_travel) && rec.first_speeds_max_travel >= 0.0 &&
+              rec.first_speeds_max_travel <= 100.0,
+          "recovery.first_speeds_max_travel", rec.first_speeds_max_travel, "0 to 100 m");
   require(std::isfinite(rec.min_gain) && rec.min_gain >= 1.0 && rec.min_gain <= 10.0,
           "recovery.min_gain", rec.min_gain, "1 to 10");
   require(rec.share_smoothing > 0.0 && rec.share_smoothing <= 1.0, "recovery.share_smoothing",

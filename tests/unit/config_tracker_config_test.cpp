@@ -49,6 +49,7 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   config.recovery.reset_ratio = 0.375;
   config.recovery.min_gain = 1.25;
   config.recovery.first_speeds = {-2.5, 7.5};
+  config.recovery.first_speeds_max_travel = 0.25;
   config.recovery.global_search.trigger_ratio = 0.4375;
   config.recovery.global_search.range_xy = 12.5;
   config.recovery.global_search.range_yaw_deg = 30.0;
@@ -64,6 +65,7 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   EXPECT_EQ(back.recovery.reset_ratio, 0.375);
   EXPECT_EQ(back.recovery.min_gain, 1.25);
   EXPECT_EQ(back.recovery.first_speeds, (std::vector<double>{-2.5, 7.5}));
+  EXPECT_EQ(back.recovery.first_speeds_max_travel, 0.25);
   EXPECT_EQ(back.recovery.global_search.trigger_ratio, 0.4375);
   EXPECT_EQ(back.recovery.global_search.range_xy, 12.5);
   EXPECT_EQ(back.recovery.global_search.range_yaw_deg, 30.0);
@@ -100,6 +102,9 @@ TEST(TrackerConfigYaml, ErrorsNameKeyAndValue) {
   EXPECT_NE(error_of("recovery: {first_speeds: [10, 150]}").find("recovery.first_speeds: 150"),
             std::string::npos);
   EXPECT_NE(error_of("recovery: {first_speeds: 10}").find("recovery.first_speeds"),
+            std::string::npos);
+  EXPECT_NE(error_of("recovery: {first_speeds_max_travel: -1}")
+                .find("recovery.first_speeds_max_travel: -1"),
             std::string::npos);
   EXPECT_NE(error_of("recovery: {min_gain: 0.9}").find("recovery.min_gain: 0.9"),
             std::string::npos);

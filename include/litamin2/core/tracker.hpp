@@ -161,8 +161,9 @@ class Tracker {
   /// Where the second scan's registration starts when no motion is known
   /// (RecoveryConfig::first_speeds): the first pose, or the first pose moved along the sensor's
   /// x axis at one of the speeds over `interval_s`, if registering `scan` (as it is voxelised,
-  /// without self-hits) from there fits min_gain times better than from the first pose. The
-  /// prediction otherwise. Adds the registrations' time to `spent`.
+  /// without self-hits) from there fits min_gain times better than from the first pose; the
+  /// speeds are tried only when the registration from the first pose moved the scan less than
+  /// first_speeds_max_travel. The prediction otherwise. Adds the registrations' time to `spent`.
   Eigen::Isometry3d registration_start(const PointCloud& scan, double motion_scale,
                                        double interval_s, StageTimes& spent);
   /// Before the first scan: applies `sensor: auto`'s preset, then the pending seed (if any).

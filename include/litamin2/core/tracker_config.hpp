@@ -61,6 +61,11 @@ struct RecoveryConfig {
   /// of them is kept if it fits at least min_gain times better than the start at rest. Empty:
   /// the start at rest only.
   std::vector<double> first_speeds = {5.0, 10.0, 20.0, 30.0};
+  /// ... searched only when the registration from the first pose moved the scan less than
+  /// this, metres: a start at speed sticks near rest, while a registration that travelled to
+  /// a motion has found it (on the harder simulated starts the search changed nothing there,
+  /// at 5-8x the second scan's time; docs/benchmarks.md). 0: always searched.
+  double first_speeds_max_travel = 1.0;
   /// Weight of a new frame in the running inlier shares: the typical share (every registered
   /// frame; the trigger above and the global search compare with it) and the fitting share
   /// (only frames at or above trigger_ratio of it: a run of frames that fit badly, after a
