@@ -29,4 +29,12 @@ inline std::filesystem::path process_temp_dir(const std::string& prefix) {
   return dir.path;
 }
 
+/// The path of an SQLite store `name` in process_temp_dir(prefix), with any earlier store of
+/// that name (and its -wal, -shm files) removed.
+inline std::string fresh_store_path(const std::string& prefix, const std::string& name) {
+  const std::string path = (process_temp_dir(prefix) / name).string();
+  for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(path + suffix);
+  return path;
+}
+
 }  // namespace litamin2::testing

@@ -22,10 +22,7 @@ using litamin2::testing::out_and_back;
 namespace {
 
 std::string fresh_store(const std::string& name) {
-  const std::string path =
-      (litamin2::testing::process_temp_dir("litamin2_core_test_") / name).string();
-  for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(path + suffix);
-  return path;
+  return litamin2::testing::fresh_store_path("litamin2_core_test_", name);
 }
 
 mapping::MapperConfig street_config() {

@@ -19,10 +19,7 @@ using litamin2::testing::out_and_back;
 namespace {
 
 std::string fresh_store(const std::string& name) {
-  const std::string path =
-      (litamin2::testing::process_temp_dir("litamin2_worker_test_") / name).string();
-  for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(path + suffix);
-  return path;
+  return litamin2::testing::fresh_store_path("litamin2_worker_test_", name);
 }
 
 /// Records, for every pose publication, how many keyframes were still waiting for the tiles.

@@ -23,10 +23,7 @@ using litamin2::testing::out_and_back;
 namespace {
 
 std::string fresh_store(const std::string& name) {
-  const std::string path =
-      (litamin2::testing::process_temp_dir("litamin2_pose_chunks_test_") / name).string();
-  for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(path + suffix);
-  return path;
+  return litamin2::testing::fresh_store_path("litamin2_pose_chunks_test_", name);
 }
 
 /// A client of KeyframePoses: the latest sample per (stream, chunk), and what was sent.
