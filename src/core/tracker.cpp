@@ -1,11 +1,13 @@
 #include "litamin2/core/tracker.hpp"
 
+#include "litamin2/core/global_pose_search.hpp"
 #include "litamin2/core/motion_model.hpp"
 #include "litamin2/core/scan_registration.hpp"
 #include "litamin2/core/sensor_preset.hpp"
 #include "litamin2/core/stopwatch.hpp"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -130,41 +132,77 @@ Eigen::Isometry3d Tracker::predicted_motion(double motion_scale) const {
   return motion_scale == 1.0 ? velocity_ : scaled_motion(velocity_, motion_scale);
 }
 
-Eigen::Isometry3d Tracker::registration_start(const PointCloud& scan, double motion_scale,
-                                              double interval_s, StageTimes& spent) {
-  const Eigen::Isometry3d predicted = pose_ * predicted_motion(motion_scale);
+Tracker::RegistrationStart Tracker::registration_start(const PointCloud& scan, double motion_scale,
+                                                       double interval_s, StageTimes& spent) {
+  RegistrationStart chosen;
+  chosen.pose = pose_ * predicted_motion(motion_scale);
   const RecoveryConfig& recovery = config_.recovery;
   // Only the second scan of a stream that started without a motion (no seed).
   if (frames_ != 1 || !recovery.enabled || recovery.first_speeds.empty() || map_.empty() ||
       !search_ || !(interval_s > 0.0))
-    return predicted;
-  const ScanRegistration at_rest =
-      register_scan(scan, voxelizer_, map_, *search_, predicted, config_.registration);
-  spent.voxelize_ms += at_rest.voxelize_ms;
-  spent.register_ms += at_rest.register_ms;
-  const double rest_share = at_rest.result.valid ? inlier_share(at_rest) : 0.0;
+    return chosen;
+  // Each registration's time goes to `spent`; the kept one is handed on without it.
+  const auto registered_from = [&](const Eigen::Isometry3d& start) {
+    ScanRegistration r =
+        register_scan(scan, voxelizer_, map_, *search_, start, config_.registration);
+    spent.voxelize_ms += r.voxelize_ms;
+    spent.register_ms += r.register_ms;
+    r.voxelize_ms = r.register_ms = 0.0;
+    return r;
+  };
+  const Eigen::Isometry3d at_rest = chosen.pose;
+  chosen.registered = registered_from(at_rest);
+  const ScanRegistration& rest = *chosen.registered;
+  const double rest_share = rest.result.valid ? inlier_share(rest) : 0.0;
   // A registration that travelled from rest found a motion; one that stayed near it may be stuck.
-  if (at_rest.result.valid && recovery.first_speeds_max_travel > 0.0 &&
-      (predicted.inverse() * at_rest.result.pose).translation().norm() >=
+  if (rest.result.valid && recovery.first_speeds_max_travel > 0.0 &&
+      (at_rest.inverse() * rest.result.pose).translation().norm() >=
           recovery.first_speeds_max_travel)
-    return predicted;
-  Eigen::Isometry3d best = predicted;
-  double best_share = rest_share;
+    return chosen;
+  // The starts at speed are ranked by a correlative score of the scan against the map (a few
+  // hundred distribution means, no registration; as the global pose search scores its grid),
+  // blurred by the widest gap between neighbouring starts; only the best is registered.
+  std::vector<double> travel = {0.0};
+  for (double speed : recovery.first_speeds) travel.push_back(speed * interval_s);
+  std::sort(travel.begin(), travel.end());
+  double widest_gap = 0.0;
+  for (std::size_t i = 1; i < travel.size(); ++i)
+    widest_gap = std::max(widest_gap, travel[i] - travel[i - 1]);
+  const auto start_time = std::chrono::steady_clock::now();
+  const PoseScorer scorer(map_, std::max(widest_gap, 0.1 * map_.voxel_size()));
+  const std::vector<Eigen::Vector3d> points =
+      search_points(rest.source, at_rest.linear(), recovery.global_search.max_sources);
+  Eigen::Isometry3d best_start = at_rest;
+  double best_score = 0.0;
   for (double speed : recovery.first_speeds) {
     Eigen::Isometry3d moved = Eigen::Isometry3d::Identity();
     moved.translation().x() = speed * interval_s;
-    const Eigen::Isometry3d start = predicted * moved;
-    const ScanRegistration other =
-        register_scan(scan, voxelizer_, map_, *search_, start, config_.registration);
-    spent.voxelize_ms += other.voxelize_ms;
-    spent.register_ms += other.register_ms;
-    const double share = other.result.valid ? inlier_share(other) : 0.0;
-    if (share > best_share && share >= recovery.min_gain * rest_share) {
-      best = start;
-      best_share = share;
+    const Eigen::Isometry3d start = at_rest * moved;
+    const double score = scorer.score(points, start);
+    if (score > best_score) {
+      best_start = start;
+      best_score = score;
     }
   }
-  return best;
+  spent.register_ms += elapsed_ms(start_time);
+  if (best_score <= 0.0) return chosen;  // no start at speed puts the scan on the map
+  ScanRegistration other = registered_from(best_start);
+  const double share = other.result.valid ? inlier_share(other) : 0.0;
+  if (share > rest_share && share >= recovery.min_gain * rest_share) {
+    chosen.pose = best_start;
+    chosen.registered = std::move(other);
+  } else {
+    // The voxeliser holds the speed start's grid voxels: re-cut the kept registration's grid.
+    const auto start = std::chrono::steady_clock::now();
+    voxelizer_.voxelize(scan, rest.grid_pose);
+    spent.voxelize_ms += elapsed_ms(start);
+  }
+  return chosen;
+}
+
+ScanRegistration Tracker::register_from(const PointCloud& scan, RegistrationStart& start) {
+  if (start.registered) return std::move(*start.registered);
+  return register_scan(scan, voxelizer_, map_, *search_, start.pose, config_.registration);
 }
 
 FrameResult Tracker::process_scaled(const PointCloud& raw, double motion_scale,
@@ -174,13 +212,12 @@ FrameResult Tracker::process_scaled(const PointCloud& raw, double motion_scale,
   if (self_hits_removed) frame.self_hits = *self_hits_removed;
   const PointCloud& scan = self_hits_removed ? raw : without_self_hits(raw, frame.self_hits);
   StageTimes start_search;
-  const Eigen::Isometry3d predicted =
-      registration_start(scan, motion_scale, interval_s, start_search);
+  RegistrationStart start = registration_start(scan, motion_scale, interval_s, start_search);
+  const Eigen::Isometry3d predicted = start.pose;
   Eigen::Isometry3d estimate = predicted;
   bool suspected_break = false;
   if (frames_ > 0 && !map_.empty() && search_) {
-    ScanRegistration registration =
-        register_scan(scan, voxelizer_, map_, *search_, predicted, config_.registration);
+    ScanRegistration registration = register_from(scan, start);
     double share = registration.result.valid ? inlier_share(registration) : 0.0;
     const RecoveryConfig& recovery = config_.recovery;
     const bool below_typical =

@@ -81,10 +81,8 @@ FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) 
     if ((d.passes == 2 || redo_first) && interval > 0.0 && frames_ > 0 && !map_.empty() &&
         search_) {
       for (int round = 0; round < (redo_first ? 2 : 1); ++round) {
-        const ScanRegistration registered =
-            register_scan(deskewed_, voxelizer_, map_, *search_,
-                          registration_start(deskewed_, motion_scale, interval, first_pass),
-                          config_.registration);
+        RegistrationStart from = registration_start(deskewed_, motion_scale, interval, first_pass);
+        const ScanRegistration registered = register_from(deskewed_, from);
         first_pass.voxelize_ms += registered.voxelize_ms;
         first_pass.register_ms += registered.register_ms;
         if (!registered.result.valid) break;

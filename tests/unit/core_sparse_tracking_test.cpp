@@ -295,6 +295,19 @@ TEST(SparseTracking, AStartAtSpeedIsFoundFromTheFirstSpeeds) {
   EXPECT_GT(worst_step_error(truth, at_rest), 0.5);
 }
 
+TEST(SparseTracking, TheStartAtSpeedIsPickedAmongManyByItsScore) {
+  // Only the start at speed whose correlative score against the map is highest is registered:
+  // among starts from 40 m/s backwards to 80 m/s forwards, the one at the stream's 40 m/s
+  // (4 m between untimed scans) is that start, and the track holds.
+  std::vector<double> steps(14, 4.0);
+  steps[0] = 0.0;
+  TrackerConfig config;
+  config.recovery.first_speeds = {-40.0, -20.0, 5.0, 10.0, 20.0, 40.0, 60.0, 80.0};
+  EXPECT_LT(worst_step_error(drive(steps), config), 0.15);
+  config.recovery.first_speeds = {-40.0, -20.0, 80.0};  // none near the motion
+  EXPECT_GT(worst_step_error(drive(steps), config), 0.5);
+}
+
 TEST(SparseTracking, TheSpeedsAreSearchedOnlyWhenTheStartAtRestStayedNearRest) {
   // recovery.first_speeds_max_travel: at 20 m/s (2 m between untimed scans) the second scan's
   // registration from the first pose travels to the motion, so the speeds are not searched and

@@ -6,6 +6,7 @@
 #include "litamin2/core/keyframe.hpp"
 #include "litamin2/core/registration.hpp"
 #include "litamin2/core/scan_filter.hpp"
+#include "litamin2/core/scan_registration.hpp"
 #include "litamin2/core/stamp.hpp"
 #include "litamin2/core/tracker_config.hpp"
 #include "litamin2/core/tracker_seed.hpp"
@@ -158,14 +159,23 @@ class Tracker {
   FrameResult process_scaled(const PointCloud& scan, double motion_scale,
                              std::optional<int> self_hits_removed = std::nullopt,
                              double interval_s = 0.1);
+  /// Where a scan's registration starts, and that registration when choosing the start
+  /// already made it (then the voxeliser holds its grid voxels, and its times are in `spent`).
+  struct RegistrationStart {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    std::optional<ScanRegistration> registered;
+  };
   /// Where the second scan's registration starts when no motion is known
   /// (RecoveryConfig::first_speeds): the first pose, or the first pose moved along the sensor's
   /// x axis at one of the speeds over `interval_s`, if registering `scan` (as it is voxelised,
   /// without self-hits) from there fits min_gain times better than from the first pose; the
   /// speeds are tried only when the registration from the first pose moved the scan less than
-  /// first_speeds_max_travel. The prediction otherwise. Adds the registrations' time to `spent`.
-  Eigen::Isometry3d registration_start(const PointCloud& scan, double motion_scale,
+  /// first_speeds_max_travel. The prediction otherwise (with no registration). Adds the
+  /// registrations' time to `spent`.
+  RegistrationStart registration_start(const PointCloud& scan, double motion_scale,
                                        double interval_s, StageTimes& spent);
+  /// The registration from `start`: the one registration_start made, or a new one.
+  ScanRegistration register_from(const PointCloud& scan, RegistrationStart& start);
   /// Before the first scan: applies `sensor: auto`'s preset, then the pending seed (if any).
   void prepare_first_scan(const PointCloud& raw);
   void apply_seed(const TrackerSeed& seed);
