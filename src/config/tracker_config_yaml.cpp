@@ -190,6 +190,8 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node, const TrackerConf
 
   YamlSection prediction(root.child("prediction"), "prediction");
   prediction.read("max_interval_ratio", config.prediction.max_interval_ratio);
+  prediction.read("learn_max_error_m", config.prediction.learn_max_error_m);
+  prediction.read("learn_max_error_deg", config.prediction.learn_max_error_deg);
   prediction.reject_unknown();
 
   YamlSection deskew(root.child("deskew"), "deskew");
@@ -300,6 +302,8 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::EndMap;
   out << YAML::Key << "prediction" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "max_interval_ratio" << YAML::Value << c.prediction.max_interval_ratio;
+  out << YAML::Key << "learn_max_error_m" << YAML::Value << c.prediction.learn_max_error_m;
+  out << YAML::Key << "learn_max_error_deg" << YAML::Value << c.prediction.learn_max_error_deg;
   out << YAML::EndMap;
   const DeskewConfig& d = c.deskew;
   out << YAML::Key << "deskew" << YAML::Value << YAML::BeginMap;

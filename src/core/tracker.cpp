@@ -354,7 +354,17 @@ FrameResult Tracker::process_scaled(const PointCloud& raw, double motion_scale,
   }
 
   // A pose found by the global search spans the missing frames: the velocity stays the last one.
-  if (!frame.pose_found)
+  // So does a motion no vehicle makes within a frame (PredictionConfig::learn_max_error_m).
+  const PredictionConfig& prediction = config_.prediction;
+  const Eigen::Isometry3d surprise = predicted.inverse() * estimate;
+  const bool implausible =
+      frames_ >= 2 && frame.registered &&
+      ((prediction.learn_max_error_m > 0.0 &&
+        surprise.translation().norm() > prediction.learn_max_error_m) ||
+       (prediction.learn_max_error_deg > 0.0 &&
+        rotation_angle(surprise.linear()) > prediction.learn_max_error_deg * M_PI / 180.0));
+  frame.velocity_kept = frame.pose_found || implausible;
+  if (!frame.velocity_kept)
     velocity_ = frames_ == 0 ? Eigen::Isometry3d::Identity() : pose_.inverse() * estimate;
   pose_ = estimate;
   frame.pose = estimate;

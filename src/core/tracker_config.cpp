@@ -113,6 +113,11 @@ void validate(const TrackerConfig& c) {
   const double ratio = c.prediction.max_interval_ratio;
   require(std::isfinite(ratio) && (ratio == 0.0 || (ratio >= 1.0 && ratio <= 100.0)),
           "prediction.max_interval_ratio", ratio, "0 (off) or 1 to 100");
+  require(std::isfinite(c.prediction.learn_max_error_m) && c.prediction.learn_max_error_m >= 0.0,
+          "prediction.learn_max_error_m", c.prediction.learn_max_error_m, "0 (off) or more");
+  require(std::isfinite(c.prediction.learn_max_error_deg) &&
+              c.prediction.learn_max_error_deg >= 0.0 && c.prediction.learn_max_error_deg <= 180.0,
+          "prediction.learn_max_error_deg", c.prediction.learn_max_error_deg, "0 (off) to 180");
   validate(c.deskew);
 }
 

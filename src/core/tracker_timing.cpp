@@ -111,7 +111,7 @@ FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) 
   last_stamp_ = timing.stamp;
   // After restart_clock() there is no interval: the previous one still belongs to velocity_,
   // as it does when the global search kept the last velocity over a break.
-  if (interval > 0.0 && !frame.pose_found) last_interval_ = interval;
+  if (interval > 0.0 && !frame.velocity_kept) last_interval_ = interval;
   return frame;
 }
 

@@ -57,6 +57,8 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   config.recovery.global_search.candidates = 5;
   config.recovery.global_search.max_sources = 300;
   config.recovery.global_search.accept_ratio = 0.75;
+  config.prediction.learn_max_error_m = 1.5;
+  config.prediction.learn_max_error_deg = 7.5;
   const TrackerConfig back = tracker_config_from_yaml(YAML::Load(tracker_config_to_yaml(config)));
   EXPECT_EQ(tracker_config_to_yaml(back), tracker_config_to_yaml(config));
   EXPECT_EQ(back.voxelizer.voxel_size, 2.5);
@@ -73,6 +75,8 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   EXPECT_EQ(back.recovery.global_search.candidates, 5);
   EXPECT_EQ(back.recovery.global_search.max_sources, 300);
   EXPECT_EQ(back.recovery.global_search.accept_ratio, 0.75);
+  EXPECT_EQ(back.prediction.learn_max_error_m, 1.5);
+  EXPECT_EQ(back.prediction.learn_max_error_deg, 7.5);
 }
 
 TEST(TrackerConfigYaml, ErrorsNameKeyAndValue) {
@@ -132,6 +136,12 @@ TEST(TrackerConfigYaml, ErrorsNameKeyAndValue) {
             std::string::npos);
   EXPECT_NE(error_of("registration: {max_iterations: 0}").find("registration.max_iterations: 0"),
             std::string::npos);
+  EXPECT_NE(
+      error_of("prediction: {learn_max_error_m: -1}").find("prediction.learn_max_error_m: -1"),
+      std::string::npos);
+  EXPECT_NE(error_of("prediction: {learn_max_error_deg: 181}")
+                .find("prediction.learn_max_error_deg: 181"),
+            std::string::npos);
 }
 
 TEST(TrackerConfigYaml, InfinityAndNanAreRejectedForEveryNumber) {
@@ -154,7 +164,9 @@ TEST(TrackerConfigYaml, InfinityAndNanAreRejectedForEveryNumber) {
                         "recovery: {reset_ratio: %s}",
                         "recovery: {global_search: {trigger_ratio: %s}}",
                         "recovery: {global_search: {range_xy: %s}}",
-                        "recovery: {global_search: {accept_ratio: %s}}"};
+                        "recovery: {global_search: {accept_ratio: %s}}",
+                        "prediction: {learn_max_error_m: %s}",
+                        "prediction: {learn_max_error_deg: %s}"};
   for (const char* key : keys) {
     for (const char* value : {".inf", "+.inf", "-.inf", ".nan"}) {
       char yaml[128];

@@ -255,6 +255,31 @@ TEST(SparseTracking, RecoversWhenFramesAreDropped) {
   EXPECT_GT(retried, 0) << "no frame was retried from other starts";
 }
 
+TEST(SparseTracking, AMotionFarFromThePredictionIsNotLearnt) {
+  // prediction.learn_max_error_m: the 3 m step of dropped_frames() (files missing from an
+  // untimed stream, frame 12) is registered, but it is 2 m from the 1 m prediction, so it is
+  // not taken as the velocity: the next scan is predicted 1 m on, not 3 m. The track holds
+  // either way on this street.
+  const auto truth = drive(dropped_frames());
+  TrackerConfig config = recovery_config();
+  EXPECT_LT(worst_step_error(truth, config), 0.15);
+  TrackerConfig keeping = config;
+  keeping.prediction.learn_max_error_m = 1.0;
+  std::vector<FrameResult> frames;
+  EXPECT_LT(worst_step_error(truth, keeping, &frames), 0.15);
+  for (std::size_t i = 1; i < 12; ++i) EXPECT_FALSE(frames[i].velocity_kept) << "frame " << i;
+  EXPECT_TRUE(frames[12].velocity_kept);
+
+  const Street street;
+  Tracker learns(config), keeps(keeping);
+  for (std::size_t i = 0; i <= 12; ++i) {
+    learns.process(ring_scan(street, truth[i], 100 + i));
+    keeps.process(ring_scan(street, truth[i], 100 + i));
+  }
+  EXPECT_NEAR(learns.velocity().translation().norm(), 3.0, 0.15);
+  EXPECT_NEAR(keeps.velocity().translation().norm(), 1.0, 0.15);
+}
+
 TEST(SparseTracking, WithoutRecoveryTheSameDropLosesTrack) {
   // The failure the recovery is for: the same sequence with the constant-velocity prediction as
   // the only start.

@@ -69,6 +69,9 @@ struct FrameResult {
   /// this frame's motion, which spans the missing frames).
   bool pose_searched = false;
   bool pose_found = false;
+  /// The velocity was not learnt from this frame (pose_found, or the motion was farther from
+  /// the prediction than PredictionConfig::learn_max_error_m / _deg).
+  bool velocity_kept = false;
   int source_distributions = 0;
   int correspondences = 0;
   /// The scan's points were moved by the motion within the sweep before registration
@@ -130,6 +133,8 @@ class Tracker {
   /// The running inlier shares (RecoveryConfig), negative before the first registration: of
   /// every registered frame (the recovery's trigger), and of the frames that fit as usual (the
   /// reset's).
+  /// The last motion, sensor frame (what the next scan is predicted with, scaled to its interval).
+  const Eigen::Isometry3d& velocity() const { return velocity_; }
   double typical_inlier_share() const { return typical_share_; }
   double fitting_inlier_share() const { return fitting_share_; }
 

@@ -36,6 +36,12 @@ struct PredictionConfig {
   /// recovery's global search handles breaks); 0: off, the last motion as it is (untimed
   /// process(scan) always predicts so).
   double max_interval_ratio = 5.0;
+  /// A registered motion that differs from the prediction by more than this (metres, or
+  /// degrees of rotation) is not taken as the new velocity: no vehicle changes its motion so much
+  /// within a frame, so the frame spans missing ones (a break) or was registered wrongly, and
+  /// the next scan is predicted with the velocity before it. 0: off (every motion is learnt).
+  double learn_max_error_m = 0.0;
+  double learn_max_error_deg = 0.0;
 };
 
 /// Recovery when the constant-velocity prediction is wrong (frames dropped or irregularly
