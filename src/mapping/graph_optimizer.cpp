@@ -460,12 +460,22 @@ LocalOptimization GraphOptimizer::optimize_local(KeyframeGraph& graph, GraphLoop
   return out;
 }
 
+std::size_t full_pass_segment_keyframes(const PoseGraphConfig& config, std::size_t keyframes) {
+  const auto base = static_cast<std::size_t>(config.segment_keyframes);
+  if (config.full_pass_max_segments <= 0) return base;
+  const auto most = static_cast<std::size_t>(config.full_pass_max_segments) * base;
+  // The smallest multiple of segment_keyframes that cuts `keyframes` into at most
+  // full_pass_max_segments segments (each stream's last one may be short).
+  return base * std::max<std::size_t>(1, (keyframes + most - 1) / most);
+}
+
 FullPassProblem GraphOptimizer::full_pass_problem(const KeyframeGraph& graph,
                                                   const GraphLoops& loops) const {
   FullPassProblem p;
   p.config = config_.graph;
   const StreamGroups& groups = graph.groups();
-  const auto segment = static_cast<std::size_t>(config_.graph.segment_keyframes);
+  p.segment_keyframes = full_pass_segment_keyframes(config_.graph, graph.size());
+  const std::size_t segment = p.segment_keyframes;
   p.segment_of_node.assign(graph.size(), -1);
   p.anchor_of_stream.resize(groups.streams().size());
   p.last_segment_of_stream.assign(groups.streams().size(), -1);

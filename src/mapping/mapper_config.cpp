@@ -35,6 +35,8 @@ void validate(const MapperConfig& c) {
   require(c.graph.local_max_free_keyframes >= 0,
           "pose_graph.local_max_free_keyframes must be >= 0 (0 = no bound)");
   require(c.graph.segment_keyframes >= 1, "pose_graph.segment_keyframes must be >= 1");
+  require(c.graph.full_pass_max_segments >= 0,
+          "pose_graph.full_pass_max_segments must be >= 0 (0 = no bound)");
 }
 
 }  // namespace litamin2::mapping

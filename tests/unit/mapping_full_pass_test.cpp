@@ -61,3 +61,56 @@ TEST(MappingFullPass, RepeatedPassesKeepRotationsOrthonormalAndPosesStill) {
   EXPECT_LT(moved, 1e-3);
   EXPECT_EQ(mapper.stats().diverged, 0u);
 }
+
+TEST(MappingFullPass, SegmentsGrowInMultiplesToKeepThePassBounded) {
+  // pose_graph.full_pass_max_segments: up to segment_keyframes x that many keyframes the
+  // segments are segment_keyframes long; beyond, the smallest multiple that keeps their number
+  // within the bound.
+  PoseGraphConfig config;
+  config.segment_keyframes = 10;
+  config.full_pass_max_segments = 20000;
+  EXPECT_EQ(full_pass_segment_keyframes(config, 0), 10u);
+  EXPECT_EQ(full_pass_segment_keyframes(config, 200000), 10u);
+  EXPECT_EQ(full_pass_segment_keyframes(config, 200001), 20u);
+  EXPECT_EQ(full_pass_segment_keyframes(config, 1000000), 50u);
+  config.full_pass_max_segments = 0;  // no bound
+  EXPECT_EQ(full_pass_segment_keyframes(config, 1000000), 10u);
+}
+
+TEST(MappingFullPass, ABoundedPassSolvesFewerSegmentsAndStillCorrects) {
+  // The same drive with a pass of at most 4 segments: the segments hold more keyframes, the
+  // pass has that many nodes (one stream: at most one partial segment more), and it is solved
+  // and applied like the unbounded one, leaving the poses close to it.
+  const auto keyframes = drive("a", out_and_back(), 0.05, 1);
+  MapperConfig config;
+  config.place.min_travel_gap = 20.0;
+  MapperConfig bounded_config = config;
+  bounded_config.graph.full_pass_max_segments = 4;
+  Mapper full(config), bounded(bounded_config);
+  for (const auto& kf : keyframes) {
+    full.add_keyframe(kf);
+    full.optimize();
+    bounded.add_keyframe(kf);
+    bounded.optimize();
+  }
+  ASSERT_GT(full.loops().size(), 5u);
+  const FullPassProblem unbounded_problem = full.full_pass_problem();
+  FullPassProblem problem = bounded.full_pass_problem();
+  EXPECT_EQ(unbounded_problem.segment_keyframes, 10u);
+  EXPECT_GT(problem.segment_keyframes, 10u);
+  EXPECT_EQ(problem.segment_keyframes % 10, 0u);
+  EXPECT_LE(problem.poses.size(), 5u);
+  EXPECT_LT(problem.poses.size(), unbounded_problem.poses.size());
+  GraphOptimizer::solve_full_pass(problem);
+  ASSERT_TRUE(problem.result.usable);
+  bounded.apply_full_pass(problem);
+  full.optimize_full();
+  const std::vector<KeyframePose> a = full.poses(), b = bounded.poses();
+  ASSERT_EQ(a.size(), b.size());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    worst = std::max(worst, (a[i].pose.translation() - b[i].pose.translation()).norm());
+  // Tolerance: rigid stretches of ~a quarter of the drive cannot bend as ten-keyframe ones
+  // can; the local optimisations have already placed both, so they stay within decimetres.
+  EXPECT_LT(worst, 0.5);
+}

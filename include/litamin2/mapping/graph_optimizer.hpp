@@ -83,11 +83,19 @@ struct FullPassProblem {
   std::vector<std::uint32_t> anchor_of_stream;
   std::vector<std::int32_t> last_segment_of_stream;
   std::size_t loop_edges = 0;
+  /// Keyframes a segment holds in this pass (PoseGraphConfig::segment_keyframes, or more under
+  /// full_pass_max_segments).
+  std::size_t segment_keyframes = 0;
   PoseGraphResult result;
   /// Wall and thread CPU time of solve_full_pass.
   double milliseconds = 0.0;
   double cpu_s = 0.0;
 };
+
+/// Keyframes per full-pass segment for a graph of `keyframes`: segment_keyframes, times the
+/// smallest factor that leaves at most full_pass_max_segments segments (plus each stream's last,
+/// partial one).
+std::size_t full_pass_segment_keyframes(const PoseGraphConfig& config, std::size_t keyframes);
 
 class GraphOptimizer {
  public:

@@ -187,6 +187,12 @@ struct PoseGraphConfig {
   /// keyframe its own node): its cost and memory are those of a graph this many times
   /// smaller, and the shape within a segment is the local optimisation's.
   int segment_keyframes = 10;
+  /// At most about this many segments in a full pass: beyond segment_keyframes x this many
+  /// keyframes the segments grow (in multiples of segment_keyframes) so that the pass stays this
+  /// size. The pass's sparse Cholesky factor grows faster than the graph (the loops between
+  /// distant places fill it in): at 8.5x10^5 keyframes in segments of 10 it held 3.8 GB
+  /// (docs/benchmarks.md, "10^6 keyframes"). 0 = no bound.
+  int full_pass_max_segments = 20000;
   /// Solver iteration limit.
   int max_iterations = 50;
   /// Solver threads.
