@@ -68,12 +68,13 @@ struct Options {
   double proximity_max_descriptor_distance =
       mapping::PlaceRecognitionConfig{}.proximity_max_descriptor_distance;
   int segment_keyframes = 10;
+  int full_pass_max_segments = mapping::PoseGraphConfig{}.full_pass_max_segments;
   int tile_segment_keyframes = 10;
   int merge_confirmations = 2;
   std::size_t cache_mb = 512;
   bool segment_spill = true;
   double full_pass_duty = 0.25;
-  int poses_chunk = 0;
+  int poses_chunk = PublishConfig{}.poses_chunk_keyframes;
   unsigned seed = 1;
   bool keep_store = false;
 };
@@ -169,6 +170,9 @@ int main(int argc, char** argv) {
                  "place_recognition.proximity_max_descriptor_distance")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--segment-keyframes", o.segment_keyframes, "pose_graph.segment_keyframes");
+  app.add_option("--full-pass-max-segments", o.full_pass_max_segments,
+                 "pose_graph.full_pass_max_segments (0: no bound)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--tile-segment-keyframes", o.tile_segment_keyframes,
                  "map_tiles.segment_keyframes (0: tiles fused keyframe by keyframe)")
       ->check(CLI::Range(0, 100000));
@@ -210,6 +214,7 @@ int main(int argc, char** argv) {
   mapper.place.verification_budget_per_keyframe = o.verification_budget;
   mapper.place.proximity_max_descriptor_distance = o.proximity_max_descriptor_distance;
   mapper.graph.segment_keyframes = o.segment_keyframes;
+  mapper.graph.full_pass_max_segments = o.full_pass_max_segments;
   mapper.place.merge_confirmations = o.merge_confirmations;
   mapper.graph.odometry_covariance = mapping::OdometryCovariance::kDistance;
   CoreOptions core_options;
@@ -569,6 +574,7 @@ int main(int argc, char** argv) {
       {"tiles", tiles},
       {"keyframes_not_fused_at_stop", map_pending},
       {"tile_segment_keyframes", o.tile_segment_keyframes},
+      {"full_pass_max_segments", o.full_pass_max_segments},
       {"segment_spill", o.segment_spill},
       {"tile_segments", tile_stats.segments},
       {"tile_segment_placements", tile_stats.segment_placements},

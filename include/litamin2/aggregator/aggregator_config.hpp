@@ -77,8 +77,9 @@ struct PublishConfig {
   /// ... this many consecutive keyframe ids of a stream: a publication sends again only the
   /// chunks holding a keyframe that changed (KeyframePoses is keyed by stream and chunk, so a
   /// late joiner still gets every chunk). 0: one chunk per stream (every keyframe of it, sent
-  /// whole whenever one of them moves).
-  int poses_chunk_keyframes = 0;
+  /// whole whenever one of them moves: at 10^6 keyframes, 10^4 a stream, that cost 1.8 ms of
+  /// the mapping thread a keyframe, docs/benchmarks.md "10^6 keyframes").
+  int poses_chunk_keyframes = 256;
   /// The map summary (made from the tile index) is published at most this often (when
   /// changed), seconds.
   double summary_period_s = 10.0;
