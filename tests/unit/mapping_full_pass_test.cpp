@@ -5,6 +5,7 @@
 // then refuses the pose) and ~230 into the runaway solutions seen at 10^5 keyframes.
 
 #include "litamin2/mapping/mapper.hpp"
+#include "support/keyframe_pose_difference.hpp"
 #include "support/street_drive.hpp"
 
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 using namespace litamin2;
 using namespace litamin2::mapping;
 using litamin2::testing::drive;
+using litamin2::testing::largest_translation_difference;
 using litamin2::testing::out_and_back;
 
 namespace {
@@ -53,9 +55,7 @@ TEST(MappingFullPass, RepeatedPassesKeepRotationsOrthonormalAndPosesStill) {
   EXPECT_LT(worst_orthonormality(mapper), 1e-12);
   const std::vector<KeyframePose> after = mapper.poses();
   ASSERT_EQ(after.size(), settled.size());
-  double moved = 0.0;
-  for (std::size_t i = 0; i < after.size(); ++i)
-    moved = std::max(moved, (after[i].pose.translation() - settled[i].pose.translation()).norm());
+  const double moved = largest_translation_difference(after, settled);
   // Tolerance: the solver stops at its function tolerance, so a pass may move a converged
   // graph by micrometres; 200 of them stay below a millimetre.
   EXPECT_LT(moved, 1e-3);
@@ -107,9 +107,7 @@ TEST(MappingFullPass, ABoundedPassSolvesFewerSegmentsAndStillCorrects) {
   full.optimize_full();
   const std::vector<KeyframePose> a = full.poses(), b = bounded.poses();
   ASSERT_EQ(a.size(), b.size());
-  double worst = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    worst = std::max(worst, (a[i].pose.translation() - b[i].pose.translation()).norm());
+  const double worst = largest_translation_difference(a, b);
   // Tolerance: rigid stretches of ~a quarter of the drive cannot bend as ten-keyframe ones
   // can; the local optimisations have already placed both, so they stay within decimetres.
   EXPECT_LT(worst, 0.5);

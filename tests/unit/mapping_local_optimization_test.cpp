@@ -3,6 +3,7 @@
 // the full pass over rigid segments within a stated distance of the keyframe-level one.
 
 #include "litamin2/mapping/mapper.hpp"
+#include "support/keyframe_pose_difference.hpp"
 #include "support/street_drive.hpp"
 
 #include <gtest/gtest.h>
@@ -13,16 +14,13 @@
 using namespace litamin2;
 using namespace litamin2::mapping;
 using litamin2::testing::drive;
+using litamin2::testing::largest_translation_difference;
 using litamin2::testing::out_and_back;
 
 namespace {
 
 double largest_difference(const Mapper& a, const Mapper& b) {
-  const auto pa = a.poses(), pb = b.poses();
-  double worst = 0.0;
-  for (std::size_t i = 0; i < pa.size() && i < pb.size(); ++i)
-    worst = std::max(worst, (pa[i].pose.translation() - pb[i].pose.translation()).norm());
-  return worst;
+  return largest_translation_difference(a.poses(), b.poses());
 }
 
 }  // namespace
