@@ -204,6 +204,13 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node, const TrackerConf
   azimuth.read("start_deg", d.azimuth.start_deg);
   azimuth.read("clockwise", d.azimuth.clockwise);
   azimuth.reject_unknown();
+  YamlSection sweep(deskew.child("sweep_motion"), "deskew.sweep_motion");
+  sweep.read("enabled", d.sweep_motion.enabled);
+  sweep.read("angular_sigma", d.sweep_motion.angular_sigma);
+  sweep.read("linear_sigma", d.sweep_motion.linear_sigma);
+  sweep.read("max_time_spread_s", d.sweep_motion.max_time_spread_s);
+  sweep.read("max_iterations", d.sweep_motion.max_iterations);
+  sweep.reject_unknown();
   deskew.reject_unknown();
 
   root.reject_unknown();
@@ -314,6 +321,13 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "period_s" << YAML::Value << d.azimuth.period_s;
   out << YAML::Key << "start_deg" << YAML::Value << d.azimuth.start_deg;
   out << YAML::Key << "clockwise" << YAML::Value << d.azimuth.clockwise;
+  out << YAML::EndMap;
+  out << YAML::Key << "sweep_motion" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "enabled" << YAML::Value << d.sweep_motion.enabled;
+  out << YAML::Key << "angular_sigma" << YAML::Value << d.sweep_motion.angular_sigma;
+  out << YAML::Key << "linear_sigma" << YAML::Value << d.sweep_motion.linear_sigma;
+  out << YAML::Key << "max_time_spread_s" << YAML::Value << d.sweep_motion.max_time_spread_s;
+  out << YAML::Key << "max_iterations" << YAML::Value << d.sweep_motion.max_iterations;
   out << YAML::EndMap << YAML::EndMap << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }

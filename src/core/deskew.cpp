@@ -46,6 +46,7 @@ void validate(const DeskewConfig& c) {
           a.start_deg, "degrees, within [-360, 360]");
   require(c.passes == 1 || c.passes == 2, "passes", c.passes,
           "1: the predicted motion only, 2: again with the registered motion");
+  validate(c.sweep_motion);
 }
 
 Twist twist_from_motion(const Eigen::Isometry3d& motion, double seconds) {

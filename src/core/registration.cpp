@@ -18,7 +18,8 @@ namespace {
 /// Adds one correspondence's weighted terms (paper Eq. 6) to `out`.
 void accumulate_correspondence(const Distribution& source, const Distribution& target,
                                const Eigen::Isometry3d& pose, const RegistrationConfig& config,
-                               CostEvaluation& out) {
+                               CostEvaluation& out, double time = 0.0,
+                               TimeWeightedSums* timed = nullptr) {
   const Eigen::Matrix3d& rotation = pose.linear();
   const Eigen::Vector3d y = pose * source.mean;
   const Eigen::Matrix3d rotated_cov = rotation * source.cov * rotation.transpose();
@@ -45,6 +46,12 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
   out.hessian += w_icp * icp.hessian;
   ++out.correspondences;
   if (w_icp >= 0.5) ++out.inliers;
+  if (timed) {
+    // The same term's derivatives times the source's time and its square (sweep_motion.hpp).
+    timed->gradient += (w_icp * time) * icp.gradient;
+    timed->hessian += (w_icp * time) * icp.hessian;
+    timed->hessian_sq += (w_icp * time * time) * icp.hessian;
+  }
   if (config.mode != CostMode::kIcpCov) return;
   if (std::min(source.count, target.count) < config.cov_min_points) return;
 
@@ -70,6 +77,12 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
   }
 }
 
+void add_into(TimeWeightedSums& total, const TimeWeightedSums& part) {
+  total.gradient += part.gradient;
+  total.hessian += part.hessian;
+  total.hessian_sq += part.hessian_sq;
+}
+
 void add_into(CostEvaluation& total, const CostEvaluation& part) {
   total.cost += part.cost;
   total.gradient += part.gradient;
@@ -84,7 +97,8 @@ void add_into(CostEvaluation& total, const CostEvaluation& part) {
 
 CostEvaluation evaluate_cost(const std::vector<Distribution>& source, const VoxelMap& map,
                              const CorrespondenceSearch& search, const Eigen::Isometry3d& pose,
-                             const RegistrationConfig& config, NearestCache* cache) {
+                             const RegistrationConfig& config, NearestCache* cache,
+                             const std::vector<double>* times, TimeWeightedSums* timed) {
   const double max_distance = config.max_correspondence_distance > 0.0
                                   ? config.max_correspondence_distance
                                   : map.voxel_size();
@@ -92,6 +106,8 @@ CostEvaluation evaluate_cost(const std::vector<Distribution>& source, const Voxe
   const std::size_t block = static_cast<std::size_t>(std::max(1, config.block_size));
   const std::size_t num_blocks = (source.size() + block - 1) / block;
   std::vector<CostEvaluation> partial(num_blocks);
+  const bool with_times = times && timed;
+  std::vector<TimeWeightedSums> partial_timed(with_times ? num_blocks : 0);
   const auto& targets = map.distributions();
 
   // Fixed blocks, each summed in order, then the blocks summed in order: the result does not
@@ -105,7 +121,11 @@ CostEvaluation evaluate_cost(const std::vector<Distribution>& source, const Voxe
             const Eigen::Vector3d query = pose * source[i].mean;
             const int match = cache ? cache->nearest(i, query, max_distance_sq)
                                     : search.nearest(query, max_distance_sq);
-            if (match >= 0) {
+            if (match < 0) continue;
+            if (with_times) {
+              accumulate_correspondence(source[i], targets[match], pose, config, partial[b],
+                                        (*times)[i], &partial_timed[b]);
+            } else {
               accumulate_correspondence(source[i], targets[match], pose, config, partial[b]);
             }
           }
@@ -115,6 +135,10 @@ CostEvaluation evaluate_cost(const std::vector<Distribution>& source, const Voxe
 
   CostEvaluation total;
   for (const CostEvaluation& part : partial) add_into(total, part);
+  if (with_times) {
+    *timed = TimeWeightedSums();
+    for (const TimeWeightedSums& part : partial_timed) add_into(*timed, part);
+  }
   return total;
 }
 

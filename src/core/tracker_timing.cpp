@@ -5,6 +5,7 @@
 #include "litamin2/core/motion_model.hpp"
 #include "litamin2/core/scan_registration.hpp"
 #include "litamin2/core/stopwatch.hpp"
+#include "litamin2/core/sweep_motion.hpp"
 #include "litamin2/core/tracker.hpp"
 
 #include <chrono>
@@ -78,6 +79,8 @@ FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) 
     // known: it is deskewed in hindsight with this motion (constant velocity over both sweeps)
     // and the map rebuilt from it, then the motion is registered again against that map.
     const bool redo_first = frames_ == 1 && !first_scan_.empty();
+    std::optional<Eigen::Isometry3d> registered_pose;
+    double registered_share = 0.0;
     if ((d.passes == 2 || redo_first) && interval > 0.0 && frames_ > 0 && !map_.empty() &&
         search_) {
       for (int round = 0; round < (redo_first ? 2 : 1); ++round) {
@@ -86,6 +89,11 @@ FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) 
         first_pass.voxelize_ms += registered.voxelize_ms;
         first_pass.register_ms += registered.register_ms;
         if (!registered.result.valid) break;
+        registered_pose = registered.result.pose;
+        registered_share =
+            registered.source.empty()
+                ? 0.0
+                : static_cast<double>(registered.result.inliers) / registered.source.size();
         twist = twist_from_motion(pose_.inverse() * registered.result.pose, interval);
         start = std::chrono::steady_clock::now();
         deskew(*measured, *times, twist, deskewed_);
@@ -93,6 +101,11 @@ FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) 
         if (redo_first) rebuild_first_keyframe(twist);
       }
     }
+    // Only where the scan fits the map as frames usually do: after a break, or on a scan that
+    // fits badly, the correction would fit the twist to the misfit.
+    if (d.sweep_motion.enabled && registered_pose && frames_ >= 2 && fitting_share_ > 0.0 &&
+        registered_share >= config_.recovery.trigger_ratio * fitting_share_)
+      correct_sweep_motion(*measured, *times, *registered_pose, twist, first_pass);
     input = &deskewed_;
   }
   if (frames_ == 0 && times) {
@@ -113,6 +126,27 @@ FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) 
   // as it does when the global search kept the last velocity over a break.
   if (interval > 0.0 && !frame.velocity_kept) last_interval_ = interval;
   return frame;
+}
+
+void Tracker::correct_sweep_motion(const PointCloud& measured, const std::vector<float>& times,
+                                   const Eigen::Isometry3d& pose, Twist& twist, StageTimes& spent) {
+  // The scan as deskewed with `twist`, cut in the map's grid at the registered pose, each
+  // distribution with its points' mean firing time; registered with the twist's correction.
+  auto start = std::chrono::steady_clock::now();
+  const std::vector<Distribution> source = voxelizer_.voxelize(deskewed_, pose);
+  const DistributionTimes source_times = distribution_times(deskewed_, times, voxelizer_);
+  spent.voxelize_ms += elapsed_ms(start);
+  start = std::chrono::steady_clock::now();
+  const SweepMotionResult sweep =
+      register_with_sweep_motion(source, source_times, map_, *search_, pose, config_.registration,
+                                 config_.deskew.sweep_motion);
+  spent.register_ms += elapsed_ms(start);
+  if (!sweep.valid) return;
+  twist.angular += sweep.correction.angular;
+  twist.linear += sweep.correction.linear;
+  start = std::chrono::steady_clock::now();
+  deskew(measured, times, twist, deskewed_);
+  spent.deskew_ms += elapsed_ms(start);
 }
 
 void Tracker::rebuild_first_keyframe(const Twist& twist) {

@@ -9,6 +9,7 @@
 /// constant-velocity prediction and again from the registered motion.
 
 #include "litamin2/core/point_cloud.hpp"
+#include "litamin2/core/sweep_motion_config.hpp"
 
 #include <Eigen/Geometry>
 #include <vector>
@@ -52,6 +53,9 @@ struct DeskewConfig {
   /// deskews the first scan in hindsight (it was taken with no motion known) and the map is
   /// rebuilt from it.
   int passes = 2;
+  /// After the passes, the twist's correction estimated with the pose and the scan deskewed
+  /// again with it (sweep_motion.hpp).
+  SweepMotionConfig sweep_motion;
 };
 
 /// Throws ConfigError (naming the key under "deskew.") on the first invalid value: period

@@ -51,12 +51,24 @@ struct CostEvaluation {
   int inliers = 0;
 };
 
+/// The ICP term's gradient and Hessian (left update) summed with each correspondence's weight
+/// times its source's time t, and the Hessian again with t^2: what a motion within the sweep
+/// adds to the system (sweep_motion.hpp). The Cov term is left out.
+struct TimeWeightedSums {
+  Vector6d gradient = Vector6d::Zero();
+  Matrix6d hessian = Matrix6d::Zero();
+  Matrix6d hessian_sq = Matrix6d::Zero();
+};
+
 /// Evaluates the cost of `source` (in its own frame) against `map` at `pose`. With a cache
 /// (one slot per source distribution, over the same search), correspondences are looked up
-/// through it: the same ones, fewer searches.
+/// through it: the same ones, fewer searches. With `times` (one per source distribution) and
+/// `timed`, also fills `timed`.
 CostEvaluation evaluate_cost(const std::vector<Distribution>& source, const VoxelMap& map,
                              const CorrespondenceSearch& search, const Eigen::Isometry3d& pose,
-                             const RegistrationConfig& config, NearestCache* cache = nullptr);
+                             const RegistrationConfig& config, NearestCache* cache = nullptr,
+                             const std::vector<double>* times = nullptr,
+                             TimeWeightedSums* timed = nullptr);
 
 /// Registers `source` to `map` starting from `initial`.
 RegistrationResult register_distributions(const std::vector<Distribution>& source,

@@ -186,6 +186,10 @@ class Tracker {
   void apply_seed(const TrackerSeed& seed);
   /// Replaces the map (the first scan alone) by the first scan deskewed with `twist`.
   void rebuild_first_keyframe(const Twist& twist);
+  /// Estimates the correction of `twist` with the pose from `pose` (sweep_motion.hpp) and, if
+  /// found, adds it to `twist` and deskews `measured` into deskewed_ again.
+  void correct_sweep_motion(const PointCloud& measured, const std::vector<float>& times,
+                            const Eigen::Isometry3d& pose, Twist& twist, StageTimes& spent);
 
   TrackerConfig config_;
   EgoLearner ego_;

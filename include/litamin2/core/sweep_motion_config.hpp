@@ -1,0 +1,28 @@
+#pragma once
+/// Configuration of the motion within a sweep estimated with the pose (sweep_motion.hpp).
+
+namespace litamin2 {
+
+struct SweepMotionConfig {
+  /// Estimate the twist's correction with the pose (one more voxelisation and a 12-unknown
+  /// registration a scan), with deskew on and the motion before known.
+  bool enabled = false;
+  /// Standard deviation of the angular velocity's change from the twist deskew used, rad/s
+  /// (KITTI 01's ground truth: the rate changes by 0.01-0.03 rad/s from one frame to the next,
+  /// 95th percentile).
+  double angular_sigma = 0.02;
+  /// Standard deviation of the linear velocity's change, m/s (braking at 5 m/s^2 changes it by
+  /// 0.5 m/s in a 10 Hz sweep).
+  double linear_sigma = 0.5;
+  /// Distributions whose points' times spread more (standard deviation, seconds) are left out
+  /// of the correction (sweep_motion.hpp).
+  double max_time_spread_s = 0.01;
+  /// Newton iterations at most.
+  int max_iterations = 10;
+};
+
+/// Throws ConfigError (naming the key under "deskew.sweep_motion.") on the first invalid
+/// value: sigmas finite and > 0, iterations within [1, 100].
+void validate(const SweepMotionConfig& config);
+
+}  // namespace litamin2
