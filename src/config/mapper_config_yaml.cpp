@@ -75,6 +75,7 @@ MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
   graph.read("local_widen_for_loops", g.local_widen_for_loops);
   graph.read_range("segment_keyframes", g.segment_keyframes, 1, 100'000);
   graph.read_range("full_pass_max_segments", g.full_pass_max_segments, 0, 100'000'000);
+  graph.read_range("iterative_min_free_poses", g.iterative_min_free_poses, 0, 100'000'000);
   graph.read_range("max_iterations", g.max_iterations, 1, 10000);
   graph.read_range("threads", g.threads, 1, 256);
   graph.reject_unknown();
@@ -152,6 +153,7 @@ std::string mapper_config_to_yaml(const MapperConfig& c) {
   out << YAML::Key << "local_widen_for_loops" << YAML::Value << c.graph.local_widen_for_loops;
   out << YAML::Key << "segment_keyframes" << YAML::Value << c.graph.segment_keyframes;
   out << YAML::Key << "full_pass_max_segments" << YAML::Value << c.graph.full_pass_max_segments;
+  out << YAML::Key << "iterative_min_free_poses" << YAML::Value << c.graph.iterative_min_free_poses;
   out << YAML::Key << "max_iterations" << YAML::Value << c.graph.max_iterations;
   out << YAML::Key << "threads" << YAML::Value << c.graph.threads;
   out << YAML::EndMap;

@@ -37,6 +37,8 @@ void validate(const MapperConfig& c) {
   require(c.graph.segment_keyframes >= 1, "pose_graph.segment_keyframes must be >= 1");
   require(c.graph.full_pass_max_segments >= 0,
           "pose_graph.full_pass_max_segments must be >= 0 (0 = no bound)");
+  require(c.graph.iterative_min_free_poses >= 0,
+          "pose_graph.iterative_min_free_poses must be >= 0 (0 = never)");
 }
 
 }  // namespace litamin2::mapping

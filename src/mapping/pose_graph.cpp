@@ -3,6 +3,7 @@
 #include <ceres/ceres.h>
 #include <Eigen/Cholesky>
 
+#include <algorithm>
 #include <memory>
 #include <stdexcept>
 
@@ -142,6 +143,13 @@ PoseGraphResult optimize_pose_graph(std::vector<Eigen::Isometry3d>& poses,
 
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  const auto free_poses = static_cast<int>(std::count(fixed.begin(), fixed.end(), false));
+  const bool iterative =
+      config.iterative_min_free_poses > 0 && free_poses >= config.iterative_min_free_poses;
+  if (iterative) {
+    options.linear_solver_type = ceres::CGNR;
+    options.preconditioner_type = ceres::JACOBI;
+  }
   options.max_num_iterations = config.max_iterations;
   options.num_threads = config.threads;
   options.logging_type = ceres::SILENT;
@@ -149,6 +157,7 @@ PoseGraphResult optimize_pose_graph(std::vector<Eigen::Isometry3d>& poses,
   ceres::Solve(options, &problem, &summary);
 
   PoseGraphResult result;
+  result.iterative = iterative;
   result.iterations = static_cast<int>(summary.iterations.size());
   result.initial_cost = summary.initial_cost;
   result.final_cost = summary.final_cost;

@@ -69,6 +69,7 @@ struct Options {
       mapping::PlaceRecognitionConfig{}.proximity_max_descriptor_distance;
   int segment_keyframes = 10;
   int full_pass_max_segments = mapping::PoseGraphConfig{}.full_pass_max_segments;
+  int iterative_min_free_poses = mapping::PoseGraphConfig{}.iterative_min_free_poses;
   int tile_segment_keyframes = 10;
   int merge_confirmations = 2;
   std::size_t cache_mb = 512;
@@ -173,6 +174,9 @@ int main(int argc, char** argv) {
   app.add_option("--full-pass-max-segments", o.full_pass_max_segments,
                  "pose_graph.full_pass_max_segments (0: no bound)")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--iterative-min-free-poses", o.iterative_min_free_poses,
+                 "pose_graph.iterative_min_free_poses (0: always the sparse Cholesky factor)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--tile-segment-keyframes", o.tile_segment_keyframes,
                  "map_tiles.segment_keyframes (0: tiles fused keyframe by keyframe)")
       ->check(CLI::Range(0, 100000));
@@ -215,6 +219,7 @@ int main(int argc, char** argv) {
   mapper.place.proximity_max_descriptor_distance = o.proximity_max_descriptor_distance;
   mapper.graph.segment_keyframes = o.segment_keyframes;
   mapper.graph.full_pass_max_segments = o.full_pass_max_segments;
+  mapper.graph.iterative_min_free_poses = o.iterative_min_free_poses;
   mapper.place.merge_confirmations = o.merge_confirmations;
   mapper.graph.odometry_covariance = mapping::OdometryCovariance::kDistance;
   CoreOptions core_options;
@@ -575,6 +580,7 @@ int main(int argc, char** argv) {
       {"keyframes_not_fused_at_stop", map_pending},
       {"tile_segment_keyframes", o.tile_segment_keyframes},
       {"full_pass_max_segments", o.full_pass_max_segments},
+      {"iterative_min_free_poses", o.iterative_min_free_poses},
       {"segment_spill", o.segment_spill},
       {"tile_segments", tile_stats.segments},
       {"tile_segment_placements", tile_stats.segment_placements},

@@ -193,6 +193,13 @@ struct PoseGraphConfig {
   /// distant places fill it in): at 8.5x10^5 keyframes in segments of 10 it held 3.8 GB
   /// (docs/benchmarks.md, "10^6 keyframes"). 0 = no bound.
   int full_pass_max_segments = 20000;
+  /// A pose graph with at least this many free poses is solved by conjugate gradients on the
+  /// normal equations (Ceres' CGNR, Jacobi preconditioner) instead of a sparse Cholesky
+  /// factorisation: memory of the order of the graph's edges, none of the factor's fill-in.
+  /// Where the loops tie every part of a large map to every other (a fleet on the same streets
+  /// for hours) the factor filled 3-4 GB and a full pass took more than 45 min from 4x10^5
+  /// keyframes on (docs/benchmarks.md, "10^6 keyframes"). 0 = always the factorisation.
+  int iterative_min_free_poses = 5000;
   /// Solver iteration limit.
   int max_iterations = 50;
   /// Solver threads.

@@ -42,6 +42,9 @@ struct PoseGraphResult {
   /// The solver returned poses that are not finite or moved beyond reach (within_reach):
   /// refused (usable false, `poses` left as they were).
   bool diverged = false;
+  /// Solved by conjugate gradients (PoseGraphConfig::iterative_min_free_poses), not by the
+  /// sparse Cholesky factorisation.
+  bool iterative = false;
 };
 
 /// Whether `after` is a plausible solution from `before`: every pose finite and no
