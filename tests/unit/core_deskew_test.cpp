@@ -7,6 +7,7 @@
 #include "litamin2/core/so3.hpp"
 #include "litamin2/core/tracker.hpp"
 #include "support/synthetic_scene.hpp"
+#include "support/twists.hpp"
 
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
@@ -18,16 +19,8 @@
 namespace litamin2 {
 namespace {
 
-Twist twist(double wx, double wy, double wz, double vx, double vy, double vz) {
-  Twist t;
-  t.angular = Eigen::Vector3d(wx, wy, wz);
-  t.linear = Eigen::Vector3d(vx, vy, vz);
-  return t;
-}
-
-double angle_deg(const Eigen::Matrix3d& r) {
-  return Eigen::AngleAxisd(r).angle() * 180.0 / M_PI;
-}
+using testing::angle_deg;
+using testing::twist;
 
 TEST(Deskew, ExpAndLogAreInverse) {
   for (const Twist& xi :

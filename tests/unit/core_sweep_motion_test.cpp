@@ -10,6 +10,7 @@
 #include "litamin2/core/voxel_map.hpp"
 #include "litamin2/core/voxelizer.hpp"
 #include "support/synthetic_scene.hpp"
+#include "support/twists.hpp"
 
 #include <gtest/gtest.h>
 
@@ -19,16 +20,8 @@
 namespace litamin2 {
 namespace {
 
-Twist twist(double wx, double wy, double wz, double vx, double vy, double vz) {
-  Twist t;
-  t.angular = Eigen::Vector3d(wx, wy, wz);
-  t.linear = Eigen::Vector3d(vx, vy, vz);
-  return t;
-}
-
-double angle_deg(const Eigen::Matrix3d& r) {
-  return Eigen::AngleAxisd(r).angle() * 180.0 / M_PI;
-}
+using testing::angle_deg;
+using testing::twist;
 
 TEST(SweepMotion, DistributionTimesAreTheMeanTimesOfTheirPoints) {
   // Two voxels of 3 m with 6 points each (times 0.01..0.06 and 0.05..0.10) and one with 2

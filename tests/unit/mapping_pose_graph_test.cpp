@@ -21,6 +21,36 @@ double rotation_error_deg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b
   return Eigen::AngleAxisd(a.rotation().transpose() * b.rotation()).angle() * 180.0 / M_PI;
 }
 
+/// `laps` laps of a 40 m square, poses 1 m apart, each lap 0.2 m above the one before.
+std::vector<Eigen::Isometry3d> square_laps(int laps) {
+  const int lap = 40;
+  std::vector<Eigen::Isometry3d> truth;
+  for (int i = 0; i < laps * lap; ++i) {
+    const int side = (i % lap) / 10, step = i % 10;
+    Eigen::Isometry3d corner = pose_of(0, 0, 0.2 * (i / lap), 0, 0, 0);
+    for (int s = 0; s < side; ++s) corner = corner * pose_of(10.0, 0, 0, 0, 0, M_PI / 2);
+    truth.push_back(corner * pose_of(step, 0, 0, 0, 0, 0));
+  }
+  return truth;
+}
+
+/// Odometry edges along `truth` that go 1 cm too far and turn 0.3 degrees too little a step,
+/// and the poses they chain from truth[0].
+void drifting_odometry(const std::vector<Eigen::Isometry3d>& truth,
+                       std::vector<PoseGraphEdge>& edges, std::vector<Eigen::Isometry3d>& poses) {
+  poses = {truth[0]};
+  for (std::size_t i = 1; i < truth.size(); ++i) {
+    PoseGraphEdge e;
+    e.from = static_cast<int>(i - 1);
+    e.to = static_cast<int>(i);
+    const Eigen::Isometry3d exact = truth[i - 1].inverse() * truth[i];
+    e.relative = exact * pose_of(0.01, 0, 0, 0, 0, -0.003);
+    e.sigma << 0.05, 0.05, 0.05, 0.005, 0.005, 0.005;
+    edges.push_back(e);
+    poses.push_back(poses.back() * e.relative);
+  }
+}
+
 }  // namespace
 
 TEST(MappingPoseGraph, OneEdgePlacesTheFreeNodeExactly) {
@@ -42,25 +72,10 @@ TEST(MappingPoseGraph, OneEdgePlacesTheFreeNodeExactly) {
 TEST(MappingPoseGraph, LoopEdgeRemovesAccumulatedDrift) {
   // A square of 40 poses 1 m apart; the odometry turns 0.3 degrees too little per corner step.
   const int n = 40;
-  std::vector<Eigen::Isometry3d> truth;
-  for (int i = 0; i < n; ++i) {
-    const int side = i / 10, step = i % 10;
-    Eigen::Isometry3d corner = pose_of(0, 0, 0, 0, 0, 0);
-    for (int s = 0; s < side; ++s) corner = corner * pose_of(10.0, 0, 0, 0, 0, M_PI / 2);
-    truth.push_back(corner * pose_of(step, 0, 0, 0, 0, 0));
-  }
+  const std::vector<Eigen::Isometry3d> truth = square_laps(1);
   std::vector<PoseGraphEdge> edges;
-  std::vector<Eigen::Isometry3d> poses = {truth[0]};
-  for (int i = 1; i < n; ++i) {
-    PoseGraphEdge e;
-    e.from = i - 1;
-    e.to = i;
-    const Eigen::Isometry3d exact = truth[i - 1].inverse() * truth[i];
-    e.relative = exact * pose_of(0.01, 0, 0, 0, 0, -0.003);
-    e.sigma << 0.05, 0.05, 0.05, 0.005, 0.005, 0.005;
-    edges.push_back(e);
-    poses.push_back(poses.back() * e.relative);
-  }
+  std::vector<Eigen::Isometry3d> poses;
+  drifting_odometry(truth, edges, poses);
   const double drift_before = (poses[n - 1].translation() - truth[n - 1].translation()).norm();
   PoseGraphEdge loop;
   loop.from = 0;
@@ -87,24 +102,10 @@ TEST(MappingPoseGraph, ConjugateGradientsSolveAsTheFactorisationDoes) {
   // every part to others, as a fleet's on the same streets). Solved by the sparse Cholesky
   // factorisation and by conjugate gradients (PoseGraphConfig::iterative_min_free_poses).
   const int lap = 40, n = 3 * lap;
-  std::vector<Eigen::Isometry3d> truth;
-  for (int i = 0; i < n; ++i) {
-    const int side = (i % lap) / 10, step = i % 10;
-    Eigen::Isometry3d corner = pose_of(0, 0, 0.2 * (i / lap), 0, 0, 0);
-    for (int s = 0; s < side; ++s) corner = corner * pose_of(10.0, 0, 0, 0, 0, M_PI / 2);
-    truth.push_back(corner * pose_of(step, 0, 0, 0, 0, 0));
-  }
+  const std::vector<Eigen::Isometry3d> truth = square_laps(3);
   std::vector<PoseGraphEdge> edges;
-  std::vector<Eigen::Isometry3d> start = {truth[0]};
-  for (int i = 1; i < n; ++i) {
-    PoseGraphEdge e;
-    e.from = i - 1;
-    e.to = i;
-    e.relative = truth[i - 1].inverse() * truth[i] * pose_of(0.01, 0, 0, 0, 0, -0.003);
-    e.sigma << 0.05, 0.05, 0.05, 0.005, 0.005, 0.005;
-    edges.push_back(e);
-    start.push_back(start.back() * e.relative);
-  }
+  std::vector<Eigen::Isometry3d> start;
+  drifting_odometry(truth, edges, start);
   for (int i = lap; i < n; ++i) {
     PoseGraphEdge loop;
     loop.from = i - lap;
