@@ -6,7 +6,8 @@
 #  1b. 20 vehicles, 6000 keyframes: no loop accepted against the ground truth's relative pose
 #     (1 m, 2 degrees), in particular none that joined two vehicles' frames, and no solve ran off;
 #  2. a store of 20,000 keyframes (place search sampled every 200 m, so it is made in seconds)
-#     is reopened from its tables with the same check: a restart does not replay the keyframes.
+#     is reopened from its tables with the same check: a restart does not replay the keyframes,
+#     and it runs in a new process (its own peak RSS, below the run's).
 # Usage: aggregator_fleet_bench.sh BUILD_DIR WORK_DIR
 set -euo pipefail
 build=$1
@@ -52,4 +53,9 @@ echo "== 2: 20 vehicles, 20000 keyframes, restart from the tables"
 cat large.json
 [ "$(field large.json keyframes)" -eq 20000 ] || { echo "keyframes missing"; exit 1; }
 [ "$(field large.json restart_identical)" = true ] || { echo "restart differs"; exit 1; }
+# The restart ran in a process of its own (its peak RSS is not the run's): it holds the graph
+# only, not the run's world, caches and queue.
+awk -v r="$(field large.json restart_peak_rss_mb)" -v p="$(field large.json peak_rss_mb)" \
+  'BEGIN { exit !(r > 0 && r < p) }' ||
+  { echo "restart peak RSS $(field large.json restart_peak_rss_mb) MB not that of a new process"; exit 1; }
 echo "ok: restart of $(field large.json keyframes) keyframes in $(field large.json restart_s) s"

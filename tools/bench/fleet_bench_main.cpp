@@ -5,8 +5,10 @@
 // AggregatorCore::ingest (store transaction, place search, verification, local optimisation),
 // the map tiles' update, the background full pass (FullPassWorker) and the publication of poses,
 // tiles and summary into a counting sink. The DDS ingest bench
-// (tests/integration/aggregator_bench.sh) covers the transport. Writes a JSON summary
-// (docs/benchmarks.md).
+// (tests/integration/aggregator_bench.sh) covers the transport. At the end the store is reopened
+// in a new process, as the aggregator restarts (fleet_restart.hpp: time to serving, that
+// process's peak RSS, the recovered graph's digest), then in this one for the accuracy figures.
+// Writes a JSON summary (docs/benchmarks.md).
 //
 // --max-wall-s, SIGINT and SIGTERM stop the feeding early: the generator makes no more
 // keyframes, the mapping thread ingests what is queued and stops as at the normal end, the
@@ -15,6 +17,7 @@
 
 #include "common/cli.hpp"
 #include "fleet_drive.hpp"
+#include "fleet_restart.hpp"
 #include "fleet_world.hpp"
 #include "litamin2/aggregator/aggregator_core.hpp"
 #include "litamin2/aggregator/aggregator_sink.hpp"
@@ -37,7 +40,6 @@
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <mutex>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -78,6 +80,7 @@ struct Options {
   int poses_chunk = PublishConfig{}.poses_chunk_keyframes;
   unsigned seed = 1;
   bool keep_store = false;
+  std::string reopen_only;
 };
 
 std::string stream_name(int v) {
@@ -90,6 +93,18 @@ double peak_rss_mb() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   return usage.ru_maxrss / 1024.0;
+}
+
+/// This process image's peak RSS (VmHWM), MB. Unlike getrusage's ru_maxrss, which Linux carries
+/// across execve (a child started by posix_spawn would report its parent's peak), VmHWM belongs
+/// to the address space the process runs in.
+double image_peak_rss_mb() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
+  }
+  return 0.0;
 }
 
 double file_mb(const std::string& path) {
@@ -192,22 +207,11 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 10000000));
   app.add_option("--seed", o.seed, "world and fleet seed");
   app.add_flag("--keep-store", o.keep_store, "use an existing store instead of removing it");
+  app.add_option("--reopen-only", o.reopen_only,
+                 "only open the existing --store as the aggregator does at start and write the "
+                 "restart's time, peak RSS and graph digest to this JSON file (the bench runs "
+                 "itself so after a run: a restart is a new process)");
   if (const auto status = litamin2::tools::parse_cli(app, argc, argv)) return *status;
-  // SIGINT/SIGTERM blocked before any thread exists; the main thread collects them while the
-  // generator feeds (no async handler).
-  std::optional<service::ServiceSignals> signals;
-  signals.emplace();
-
-  if (!o.keep_store) {
-    for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(o.store + suffix);
-  }
-  FleetWorldConfig world_config;
-  world_config.blocks = o.blocks;
-  world_config.seed = o.seed;
-  const FleetWorld world(world_config);
-  FleetDriveConfig drive_config;
-  drive_config.blocks = o.blocks;
-  drive_config.spacing = o.spacing;
 
   mapping::MapperConfig mapper;
   mapper.place.search_spacing = o.search_spacing;
@@ -237,11 +241,55 @@ int main(int argc, char** argv) {
   core_options.tiles = config.map_tiles.tiles;
   core_options.tile_cache_bytes = static_cast<std::size_t>(config.map_tiles.cache_mb) << 20;
 
+  if (!o.reopen_only.empty()) {
+    RestartReport report;
+    const auto r0 = Clock::now();
+    AggregatorCore reopened(o.store, store::OpenMode::kMustExist, mapper, {}, {}, core_options);
+    report.restart_s = std::chrono::duration<double>(Clock::now() - r0).count();
+    report.peak_rss_mb = image_peak_rss_mb();
+    report.keyframes = reopened.mapper().graph().size();
+    report.loops = reopened.mapper().loops().size();
+    report.digest = graph_digest(reopened.mapper());
+    write_restart_report(o.reopen_only, report);
+    return 0;
+  }
+
+  // SIGINT/SIGTERM blocked before any thread exists; the main thread collects them while the
+  // generator feeds (no async handler).
+  std::optional<service::ServiceSignals> signals;
+  signals.emplace();
+  if (!o.keep_store) {
+    for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(o.store + suffix);
+  }
+  FleetWorldConfig world_config;
+  world_config.blocks = o.blocks;
+  world_config.seed = o.seed;
+  const FleetWorld world(world_config);
+  FleetDriveConfig drive_config;
+  drive_config.blocks = o.blocks;
+  drive_config.spacing = o.spacing;
+
   std::fprintf(stderr, "fleet-bench: %d vehicles, %zu keyframes, world of %zu voxels, store %s\n",
                o.vehicles, o.keyframes, world.voxels(), o.store.c_str());
-  // Ground truth of every keyframe, in vehicle 0's first frame.
-  std::map<KeyframeKey, Eigen::Isometry3d> truth;
-  std::mutex truth_mutex;
+  // Ground truth of every keyframe, in vehicle 0's first frame, in the order made (keyframe k
+  // of vehicle v at k * vehicles + v), compact (56 B a keyframe): the bench's own memory counts
+  // in the peak RSS. Written by the generator only, read after it is joined.
+  struct TruthPose {
+    Eigen::Quaterniond rotation;
+    Eigen::Vector3d translation;
+  };
+  std::vector<TruthPose> truth_poses;
+  truth_poses.reserve(o.keyframes);
+  std::map<std::string, std::size_t> vehicle_index;
+  for (int v = 0; v < o.vehicles; ++v) vehicle_index[stream_name(v)] = static_cast<std::size_t>(v);
+  auto truth = [&](const KeyframeKey& key) {
+    const TruthPose& t = truth_poses.at(key.id * static_cast<std::size_t>(o.vehicles) +
+                                        vehicle_index.at(key.stream));
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = t.rotation.toRotationMatrix();
+    pose.translation() = t.translation;
+    return pose;
+  };
   PatchQueue queue(static_cast<std::size_t>(4 * o.vehicles));
   double distributions_total = 0.0;  // the generator's; read after it is joined
   std::size_t made = 0;              // the generator's; read after it is joined
@@ -267,10 +315,8 @@ int main(int argc, char** argv) {
         kf.voxel_size = 3.0;
         kf.distributions = world.patch(d.truth(), rngs[static_cast<std::size_t>(v)]);
         distributions_total += static_cast<double>(kf.distributions.size());
-        {
-          std::lock_guard lock(truth_mutex);
-          truth[kf.key] = origin * d.truth();
-        }
+        const Eigen::Isometry3d true_pose = origin * d.truth();
+        truth_poses.push_back({Eigen::Quaterniond(true_pose.linear()), true_pose.translation()});
         if (!queue.push(std::move(kf))) {
           generator_done = true;
           return;
@@ -282,7 +328,8 @@ int main(int argc, char** argv) {
   });
 
   std::size_t keyframes = 0, loops = 0, full_passes = 0;
-  std::vector<mapping::KeyframePose> live_poses;
+  std::uint64_t live_digest = 0;  // of the graph the run ended with (fleet_restart.hpp)
+  std::size_t live_keyframes = 0;
   std::vector<std::pair<std::size_t, double>> batches;  // (keyframes after, mapping CPU s)
   std::vector<double> loop_latency_ms;
   double background_cpu_s = 0.0;
@@ -431,7 +478,8 @@ int main(int argc, char** argv) {
     map_pending = core.map_pending();
     tile_stats = core.tiles().stats();
     loops = core.mapper().loops().size();
-    live_poses = core.mapper().poses();
+    live_digest = graph_digest(core.mapper());
+    live_keyframes = core.mapper().graph().size();
     diverged = core.mapper().stats().diverged;
     final_stats = core.mapper().stats();
   }
@@ -440,20 +488,23 @@ int main(int argc, char** argv) {
   std::fprintf(stderr, "fleet-bench: mapping stopped at %zu keyframes after %.0f s; reopening\n",
                keyframes, wall_s);
 
-  // Restart: reopen the final store as the aggregator does, to serving.
-  const auto r0 = Clock::now();
-  AggregatorCore reopened(o.store, store::OpenMode::kMustExist, mapper, {}, {}, core_options);
-  const double restart_s = std::chrono::duration<double>(Clock::now() - r0).count();
-  std::fprintf(stderr, "fleet-bench: restart %.2f s\n", restart_s);
-  // The recovered graph is the one the run ended with: every pose, frame and loop.
-  const std::vector<mapping::KeyframePose> recovered = reopened.mapper().poses();
-  bool restart_identical =
-      recovered.size() == live_poses.size() && reopened.mapper().loops().size() == loops;
-  for (std::size_t i = 0; restart_identical && i < recovered.size(); ++i) {
-    restart_identical = recovered[i].key == live_poses[i].key &&
-                        recovered[i].frame == live_poses[i].frame &&
-                        recovered[i].pose.matrix() == live_poses[i].pose.matrix();
+  // Restart: a new process reopens the final store as the aggregator does, to serving; the
+  // graph it recovers is the one the run ended with (every pose, frame and loop).
+  const std::string report_path = o.store + ".restart.json";
+  RestartReport restart;
+  try {
+    restart = run_restart_child(std::vector<std::string>(argv, argv + argc), report_path);
+  } catch (const std::exception& e) {
+    return litamin2::tools::runtime_error(app.get_name(), e.what());
   }
+  std::filesystem::remove(report_path);
+  const bool restart_identical = restart.digest == live_digest &&
+                                 restart.keyframes == live_keyframes && restart.loops == loops;
+  std::fprintf(stderr, "fleet-bench: restart %.2f s, peak RSS %.0f MB, graph %s\n",
+               restart.restart_s, restart.peak_rss_mb, restart_identical ? "identical" : "DIFFERS");
+
+  // The accuracy figures from the reopened store, in this process.
+  AggregatorCore reopened(o.store, store::OpenMode::kMustExist, mapper, {}, {}, core_options);
 
   // ATE of every keyframe in the map frame (vehicle 0's odometry frame = its first pose).
   const mapping::Mapper& m = reopened.mapper();
@@ -463,7 +514,7 @@ int main(int argc, char** argv) {
   std::set<std::string> merged;
   for (const mapping::KeyframePose& p : m.poses()) {
     if (p.frame != anchor) continue;
-    sum_sq += (p.pose.translation() - truth.at(p.key).translation()).squaredNorm();
+    sum_sq += (p.pose.translation() - truth(p.key).translation()).squaredNorm();
     ++in_map;
     merged.insert(p.key.stream);
   }
@@ -481,7 +532,7 @@ int main(int argc, char** argv) {
       return s;
     };
     for (const mapping::LoopEdge& e : m.loops()) {
-      const Eigen::Isometry3d truth_rel = truth.at(e.from).inverse() * truth.at(e.to);
+      const Eigen::Isometry3d truth_rel = truth(e.from).inverse() * truth(e.to);
       const Eigen::Isometry3d error = e.relative.inverse() * truth_rel;
       const double t_err = error.translation().norm();
       const double r_err = Eigen::AngleAxisd(error.rotation()).angle() * 180.0 / M_PI;
@@ -489,7 +540,7 @@ int main(int argc, char** argv) {
       worst_loop_m = std::max(worst_loop_m, t_err);
       wrong_loops += wrong;
       if (wrong) {
-        const Eigen::Vector3d a = truth.at(e.from).translation(), b = truth.at(e.to).translation();
+        const Eigen::Vector3d a = truth(e.from).translation(), b = truth(e.to).translation();
         std::fprintf(stderr,
                      "wrong loop %s/%llu -> %s/%llu: error %.2f m %.2f deg, true places "
                      "(%.1f %.1f) and (%.1f %.1f), fitness %.3f rmse %.3f\n",
@@ -514,7 +565,7 @@ int main(int argc, char** argv) {
     for (const mapping::KeyframePose& p : m.poses()) {
       if (p.frame != anchor) continue;
       by[p.key.stream].first.push_back(p.pose);
-      by[p.key.stream].second.push_back(truth.at(p.key));
+      by[p.key.stream].second.push_back(truth(p.key));
     }
     for (const auto& [stream, poses] : by) {
       io::write_kitti_poses(o.trajectories + "/" + stream + ".kitti", poses.first);
@@ -559,9 +610,9 @@ int main(int argc, char** argv) {
       {"loop_latency_ms_p50", percentile(loop_latency_ms, 0.5)},
       {"loop_latency_ms_p99", percentile(loop_latency_ms, 0.99)},
       {"peak_rss_mb", rss_run},
-      {"peak_rss_mb_after_restart", peak_rss_mb()},
+      {"restart_peak_rss_mb", restart.peak_rss_mb},
       {"store_mb", file_mb(o.store)},
-      {"restart_s", restart_s},
+      {"restart_s", restart.restart_s},
       {"restart_identical", restart_identical},
       {"wrong_loops", wrong_loops},
       {"worst_loop_error_m", worst_loop_m},
