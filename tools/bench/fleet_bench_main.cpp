@@ -61,6 +61,7 @@ struct Options {
   std::string trajectories;
   int blocks = 10;
   double spacing = 2.0;
+  double yaw_bias_deg = FleetDriveConfig{}.yaw_bias_deg;
   double search_spacing = 10.0;
   double loop_spacing = 0.0;
   int local_hold_loops = mapping::PoseGraphConfig{}.local_hold_loops;
@@ -77,6 +78,7 @@ struct Options {
   std::size_t cache_mb = 512;
   bool segment_spill = true;
   double full_pass_duty = 0.25;
+  bool full_pass_on_stop = false;
   int poses_chunk = PublishConfig{}.poses_chunk_keyframes;
   unsigned seed = 1;
   bool keep_store = false;
@@ -170,6 +172,9 @@ int main(int argc, char** argv) {
   app.add_option("--blocks", o.blocks, "street grid size, blocks per side")
       ->check(CLI::Range(2, 1000));
   app.add_option("--spacing", o.spacing, "metres between keyframes");
+  app.add_option("--yaw-bias-deg", o.yaw_bias_deg,
+                 "each vehicle's odometry yaw bias is drawn from +-this, degrees per keyframe")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--search-spacing", o.search_spacing, "place_recognition.search_spacing, metres");
   app.add_option("--loop-spacing", o.loop_spacing, "place_recognition.loop_spacing, metres");
   app.add_option("--local-hold-loops", o.local_hold_loops, "pose_graph.local_hold_loops")
@@ -202,6 +207,9 @@ int main(int argc, char** argv) {
   app.add_option("--segment-spill", o.segment_spill,
                  "spill evicted tile segments' moments to a scratch file (0: recompute them)");
   app.add_option("--full-pass-duty", o.full_pass_duty, "full pass's share of a core (0 = none)");
+  app.add_option("--full-pass-on-stop", o.full_pass_on_stop,
+                 "a last full pass, waited for, when the feeding ends (0 or 1; 0: the one in "
+                 "flight is applied and the figures are those of the graph as it runs)");
   app.add_option("--poses-chunk", o.poses_chunk,
                  "publish.poses_chunk_keyframes (0: a stream's poses in one piece)")
       ->check(CLI::Range(0, 10000000));
@@ -229,12 +237,12 @@ int main(int argc, char** argv) {
   CoreOptions core_options;
   core_options.distribution_cache_bytes = o.cache_mb << 20;
   core_options.spill_segments = o.segment_spill;
-  // The aggregator's configuration (defaults) but for the options above; no last synchronous
-  // full pass at the end (the one in flight is applied).
+  // The aggregator's configuration (defaults) but for the options above; by default no last
+  // synchronous full pass at the end (the one in flight is applied).
   AggregatorConfig config;
   config.mapper = mapper;
   config.full_pass.max_duty = o.full_pass_duty;
-  config.full_pass.on_stop = false;
+  config.full_pass.on_stop = o.full_pass_on_stop;
   config.ingest.max_batch = o.vehicles;
   config.publish.poses_chunk_keyframes = o.poses_chunk;
   config.map_tiles.tiles.segment_keyframes = o.tile_segment_keyframes;
@@ -268,6 +276,7 @@ int main(int argc, char** argv) {
   FleetDriveConfig drive_config;
   drive_config.blocks = o.blocks;
   drive_config.spacing = o.spacing;
+  drive_config.yaw_bias_deg = o.yaw_bias_deg;
 
   std::fprintf(stderr, "fleet-bench: %d vehicles, %zu keyframes, world of %zu voxels, store %s\n",
                o.vehicles, o.keyframes, world.voxels(), o.store.c_str());
@@ -525,6 +534,7 @@ int main(int argc, char** argv) {
   // order the store recovers them, as Mapper::restore joins them) are counted apart.
   std::size_t wrong_loops = 0, merges = 0, wrong_merges = 0;
   double worst_loop_m = 0.0;
+  std::vector<double> loop_error_m, loop_error_deg;  // of every loop, against the truth
   {
     std::map<std::string, std::string> parent;
     auto root = [&](std::string s) {
@@ -538,6 +548,8 @@ int main(int argc, char** argv) {
       const double r_err = Eigen::AngleAxisd(error.rotation()).angle() * 180.0 / M_PI;
       const bool wrong = t_err > 1.0 || r_err > 2.0;
       worst_loop_m = std::max(worst_loop_m, t_err);
+      loop_error_m.push_back(t_err);
+      loop_error_deg.push_back(r_err);
       wrong_loops += wrong;
       if (wrong) {
         const Eigen::Vector3d a = truth(e.from).translation(), b = truth(e.to).translation();
@@ -589,6 +601,7 @@ int main(int argc, char** argv) {
   }
   const Json summary = {
       {"vehicles", o.vehicles},
+      {"yaw_bias_deg", o.yaw_bias_deg},
       {"local_hold_loops", o.local_hold_loops},
       {"local_max_free_keyframes", o.local_max_free_keyframes},
       {"local_widen_for_loops", o.local_widen_for_loops},
@@ -616,6 +629,10 @@ int main(int argc, char** argv) {
       {"restart_identical", restart_identical},
       {"wrong_loops", wrong_loops},
       {"worst_loop_error_m", worst_loop_m},
+      {"loop_error_m_p50", percentile(loop_error_m, 0.5)},
+      {"loop_error_m_p95", percentile(loop_error_m, 0.95)},
+      {"loop_error_deg_p50", percentile(loop_error_deg, 0.5)},
+      {"loop_error_deg_p95", percentile(loop_error_deg, 0.95)},
       {"group_merges", merges},
       {"wrong_group_merges", wrong_merges},
       {"diverged_solves", diverged},
@@ -632,6 +649,7 @@ int main(int argc, char** argv) {
       {"tile_segment_keyframes", o.tile_segment_keyframes},
       {"full_pass_max_segments", o.full_pass_max_segments},
       {"iterative_min_free_poses", o.iterative_min_free_poses},
+      {"full_pass_on_stop", o.full_pass_on_stop},
       {"segment_spill", o.segment_spill},
       {"tile_segments", tile_stats.segments},
       {"tile_segment_placements", tile_stats.segment_placements},
