@@ -117,6 +117,8 @@ SweepMotionResult register_with_sweep_motion(
   Vector6d prior_precision;
   prior_precision << Eigen::Vector3d::Constant(1.0 / (config.angular_sigma * config.angular_sigma)),
       Eigen::Vector3d::Constant(1.0 / (config.linear_sigma * config.linear_sigma));
+  // A point's latest time in the sweep: the convergence test counts a correction step by it.
+  const double span = times.empty() ? 0.0 : *std::max_element(times.begin(), times.end());
   for (int iteration = 0; iteration < config.max_iterations; ++iteration) {
     move_within_sweep(source, times, result.correction, moved);
     TimeWeightedSums timed;
@@ -171,8 +173,7 @@ SweepMotionResult register_with_sweep_motion(
     result.correction.angular += step.segment<3>(6);
     result.correction.linear += step.tail<3>();
     result.valid = true;
-    // The correction's step counted by what it moves a point over a sweep's last time.
-    const double span = times.empty() ? 0.0 : *std::max_element(times.begin(), times.end());
+    // The correction's step counted by what it moves a point over the sweep (span).
     if (step.head<3>().norm() < registration.rotation_tolerance &&
         step.segment<3>(3).norm() < registration.translation_tolerance &&
         span * step.segment<3>(6).norm() < registration.rotation_tolerance &&

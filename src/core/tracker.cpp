@@ -19,10 +19,6 @@ double rotation_angle(const Eigen::Matrix3d& rotation) {
   return Eigen::AngleAxisd(rotation).angle();
 }
 
-double inlier_share(const ScanRegistration& r) {
-  return r.source.empty() ? 0.0 : static_cast<double>(r.result.inliers) / r.source.size();
-}
-
 /// 2 sigma^2 H^-1, sigma^2 = cost per residual degree of freedom (3 per correspondence).
 Matrix6d covariance_from_hessian(const RegistrationResult& result) {
   const double dof = std::max(1.0, 3.0 * result.correspondences - 6.0);
@@ -153,7 +149,7 @@ Tracker::RegistrationStart Tracker::registration_start(const PointCloud& scan, d
   const Eigen::Isometry3d at_rest = chosen.pose;
   chosen.registered = registered_from(at_rest);
   const ScanRegistration& rest = *chosen.registered;
-  const double rest_share = rest.result.valid ? inlier_share(rest) : 0.0;
+  const double rest_share = rest.result.valid ? rest.inlier_share() : 0.0;
   // A registration that travelled from rest found a motion; one that stayed near it may be stuck.
   if (rest.result.valid && recovery.first_speeds_max_travel > 0.0 &&
       (at_rest.inverse() * rest.result.pose).translation().norm() >=
@@ -187,7 +183,7 @@ Tracker::RegistrationStart Tracker::registration_start(const PointCloud& scan, d
   spent.register_ms += elapsed_ms(start_time);
   if (best_score <= 0.0) return chosen;  // no start at speed puts the scan on the map
   ScanRegistration other = registered_from(best_start);
-  const double share = other.result.valid ? inlier_share(other) : 0.0;
+  const double share = other.result.valid ? other.inlier_share() : 0.0;
   if (share > rest_share && share >= recovery.min_gain * rest_share) {
     chosen.pose = best_start;
     chosen.registered = std::move(other);
@@ -218,7 +214,7 @@ FrameResult Tracker::process_scaled(const PointCloud& raw, double motion_scale,
   bool suspected_break = false;
   if (frames_ > 0 && !map_.empty() && search_) {
     ScanRegistration registration = register_from(scan, start);
-    double share = registration.result.valid ? inlier_share(registration) : 0.0;
+    double share = registration.result.valid ? registration.inlier_share() : 0.0;
     const RecoveryConfig& recovery = config_.recovery;
     const bool below_typical =
         typical_share_ > 0.0 && share < recovery.trigger_ratio * typical_share_;
@@ -231,7 +227,7 @@ FrameResult Tracker::process_scaled(const PointCloud& raw, double motion_scale,
         ScanRegistration other =
             register_scan(scan, voxelizer_, map_, *search_,
                           pose_ * scaled_motion(velocity_, s * motion_scale), config_.registration);
-        const double other_share = other.result.valid ? inlier_share(other) : 0.0;
+        const double other_share = other.result.valid ? other.inlier_share() : 0.0;
         registration.voxelize_ms += other.voxelize_ms;
         registration.register_ms += other.register_ms;
         if (other_share > share && other_share >= recovery.min_gain * predicted_share) {
@@ -255,7 +251,7 @@ FrameResult Tracker::process_scaled(const PointCloud& raw, double motion_scale,
         for (const PoseCandidate& candidate : candidates) {
           ScanRegistration other =
               register_scan(scan, voxelizer_, map_, *search_, candidate.pose, config_.registration);
-          const double other_share = other.result.valid ? inlier_share(other) : 0.0;
+          const double other_share = other.result.valid ? other.inlier_share() : 0.0;
           registration.voxelize_ms += other.voxelize_ms;
           registration.register_ms += other.register_ms;
           if (other_share > share && other_share >= search.accept_ratio * typical_share_) {
@@ -279,7 +275,7 @@ FrameResult Tracker::process_scaled(const PointCloud& raw, double motion_scale,
       // old map, which may no longer be where it is drawn, is dropped.
       ScanRegistration fresh = register_scan(scan, voxelizer_, *break_map_, *break_search_,
                                              predicted, config_.registration);
-      const double fresh_share = fresh.result.valid ? inlier_share(fresh) : 0.0;
+      const double fresh_share = fresh.result.valid ? fresh.inlier_share() : 0.0;
       fresh.voxelize_ms += registration.voxelize_ms;
       fresh.register_ms += registration.register_ms;
       if (fresh_share >= recovery.trigger_ratio * fitting_share_) {

@@ -90,10 +90,7 @@ FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) 
         first_pass.register_ms += registered.register_ms;
         if (!registered.result.valid) break;
         registered_pose = registered.result.pose;
-        registered_share =
-            registered.source.empty()
-                ? 0.0
-                : static_cast<double>(registered.result.inliers) / registered.source.size();
+        registered_share = registered.inlier_share();
         twist = twist_from_motion(pose_.inverse() * registered.result.pose, interval);
         start = std::chrono::steady_clock::now();
         deskew(*measured, *times, twist, deskewed_);

@@ -26,6 +26,11 @@ struct ScanRegistration {
   double voxelize_ms = 0.0;
   /// Time spent in Newton iterations, milliseconds.
   double register_ms = 0.0;
+
+  /// Share of the scan's distributions that the result counted as inliers (0 if none).
+  double inlier_share() const {
+    return source.empty() ? 0.0 : static_cast<double>(result.inliers) / source.size();
+  }
 };
 
 /// The re-grid loop's rule, apart from voxelising and registering: feed it each pass's result
