@@ -70,8 +70,15 @@ void AggregatorCore::replay(const Progress& progress) {
   }
 }
 
+void AggregatorCore::keep_descriptor_cells_in_store() {
+  mapper_.keep_descriptor_cells_outside(
+      [this](const KeyframeKey& key) { return store_.load_descriptor(key); });
+}
+
 void AggregatorCore::recover_from_tables(const Progress& progress) {
-  store::KeyframeStore::GraphRecords records = store_.load_graph();
+  // Every descriptor is in the store: the graph keeps the ring keys, a search reads the cells
+  // of the keyframes it shortlists back (Mapper::keep_descriptor_cells_outside).
+  store::KeyframeStore::GraphRecords records = store_.load_graph(/*descriptor_cells=*/false);
   const std::size_t total = records.nodes.size();
   // A store of schema version 1 has neither descriptors nor every corrected pose: replay it
   // once (then it has both).
@@ -89,6 +96,7 @@ void AggregatorCore::recover_from_tables(const Progress& progress) {
       for (const auto& [key, d] : made) refs.emplace_back(key, &d);
       store_.store_descriptors(refs);
       batch.commit();
+      keep_descriptor_cells_in_store();
     }
     return;
   }
@@ -102,6 +110,7 @@ void AggregatorCore::recover_from_tables(const Progress& progress) {
   records.nodes.clear();
   records.nodes.shrink_to_fit();
   mapper_.restore(std::move(nodes), records.loops, records.pending_merges);
+  keep_descriptor_cells_in_store();
   saved_pending_merges_ = mapper_.pending_merges_version();
   mapper_.take_changed();
   // The tiles as committed, and the keyframes not fused at their current pose yet.

@@ -15,6 +15,14 @@ constexpr double kDegToRad = M_PI / 180.0;
 
 }  // namespace
 
+const PlaceDescriptor& LoopDetector::with_cells(const KeyframeNode& node,
+                                                PlaceDescriptor& loaded) const {
+  if (!node.descriptor.cells.empty() || !loader_) return node.descriptor;
+  loaded = loader_(node.key);
+  ++descriptor_loads_;
+  return loaded;
+}
+
 std::optional<LoopEdge> LoopDetector::detect(std::uint32_t query,
                                              const std::vector<Distribution>& distributions,
                                              const KeyframeGraph& graph, DistributionCache& cache,
@@ -27,9 +35,10 @@ std::optional<LoopEdge> LoopDetector::detect(std::uint32_t query,
   bool first_is_proximity = false;
   if (scope == SearchScope::kAll) {
     if (auto c = proximity_candidate(query, graph)) {
-      if (max_distance > 0.0 &&
-          match_descriptors(graph.node(query).descriptor, graph.node(c->node).descriptor).distance >
-              max_distance) {
+      PlaceDescriptor loaded_query, loaded_candidate;
+      if (max_distance > 0.0 && match_descriptors(with_cells(graph.node(query), loaded_query),
+                                                  with_cells(graph.node(c->node), loaded_candidate))
+                                        .distance > max_distance) {
         ++stats.proximity_skipped;
       } else {
         candidates.push_back(*c);
@@ -151,8 +160,11 @@ std::optional<LoopCandidate> LoopDetector::descriptor_candidate(std::uint32_t qu
   }
   std::int64_t best = -1;
   DescriptorMatch best_match;
+  PlaceDescriptor loaded_query, loaded_candidate;
+  const PlaceDescriptor& query_descriptor = with_cells(q, loaded_query);
   for (std::uint32_t n : shortlist) {
-    const DescriptorMatch match = match_descriptors(q.descriptor, graph.node(n).descriptor);
+    const DescriptorMatch match =
+        match_descriptors(query_descriptor, with_cells(graph.node(n), loaded_candidate));
     if (match.distance < best_match.distance) {
       best_match = match;
       best = n;

@@ -33,6 +33,8 @@ struct Mapper::Impl {
   GraphLoops loops;
   MapperStats stats;
   MapperCpu cpu;
+  /// keep_descriptor_cells_outside was called: nodes hold no descriptor cells.
+  bool cells_outside = false;
   int loops_since_optimize = 0;
   std::size_t checked_since_full_pass = 0;
   /// Per stream, the path length at its latest place search (search_spacing).
@@ -182,6 +184,7 @@ AddStatus Mapper::add_keyframe(Keyframe keyframe, std::vector<LoopEdge>* new_loo
       m.offer_loop(*loop, new_loops);
     }
   }
+  if (m.cells_outside) release_cells(m.graph.mutable_node(index).descriptor);
   m.cache->put(keyframe.key, std::move(keyframe.distributions));
   return AddStatus::kAdded;
 }
@@ -245,6 +248,18 @@ void Mapper::apply_full_pass(const FullPassProblem& problem) {
 
 std::size_t Mapper::loops_since_full_pass() const {
   return impl_->checked_since_full_pass;
+}
+
+void Mapper::keep_descriptor_cells_outside(DescriptorLoader loader) {
+  Impl& m = *impl_;
+  m.detector.set_descriptor_loader(std::move(loader));
+  m.cells_outside = true;
+  for (std::uint32_t n = 0; n < m.graph.size(); ++n)
+    release_cells(m.graph.mutable_node(n).descriptor);
+}
+
+std::size_t Mapper::descriptor_loads() const {
+  return impl_->detector.descriptor_loads();
 }
 
 void Mapper::restore(std::vector<KeyframeNode> nodes, const std::vector<LoopEdge>& loops,

@@ -45,6 +45,8 @@ struct KeyframeStore::Impl {
   std::unique_ptr<Statement> insert_node;
   /// One keyframe's distributions.
   std::unique_ptr<Statement> distributions;
+  /// One keyframe's descriptor (schema version 2 on).
+  std::unique_ptr<Statement> descriptor;
   /// UPSERT of a corrected pose.
   std::unique_ptr<Statement> upsert_pose;
   /// Map tiles: UPSERT, DELETE, one tile's voxels; a node's map pose.
@@ -198,6 +200,8 @@ KeyframeStore KeyframeStore::open(const std::string& path, OpenMode mode,
   impl->distributions = std::make_unique<Statement>(
       db, impl->path, "SELECT distributions FROM keyframes WHERE stream = ?1 AND id = ?2");
   if (impl->version >= 2) {
+    impl->descriptor = std::make_unique<Statement>(
+        db, impl->path, "SELECT descriptor FROM nodes WHERE stream = ?1 AND id = ?2");
     impl->insert_node = std::make_unique<Statement>(
         db, impl->path,
         "INSERT OR IGNORE INTO nodes (stream, id, stamp_ns, voxel_size, pose, covariance, "
@@ -304,7 +308,28 @@ std::vector<Distribution> KeyframeStore::load_distributions(
   }
 }
 
-KeyframeStore::GraphRecords KeyframeStore::load_graph() const {
+mapping::PlaceDescriptor KeyframeStore::load_descriptor(const KeyframeKey& key) const {
+  Impl& im = impl();
+  const std::string what = "cannot read the descriptor of keyframe " + describe(key);
+  if (!im.descriptor) throw StoreError(im.path, what + ": the store has no descriptors");
+  if (key.id > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+    throw StoreError(im.path, what + ": no such keyframe");
+  Statement& s = *im.descriptor;
+  ResetOnExit reset{s};
+  s.bind_text(1, key.stream);
+  s.bind(2, static_cast<std::int64_t>(key.id));
+  if (!s.step(what)) throw StoreError(im.path, what + ": no such keyframe");
+  if (sqlite3_column_type(s.get(), 0) == SQLITE_NULL)
+    throw StoreError(im.path, what + ": none stored");
+  try {
+    const auto blob = column_blob(s.get(), 0, "descriptor");
+    return decode_descriptor(blob.first, blob.second);
+  } catch (const std::invalid_argument& e) {
+    throw StoreError(im.path, "corrupt node row " + describe(key) + ": " + e.what());
+  }
+}
+
+KeyframeStore::GraphRecords KeyframeStore::load_graph(bool descriptor_cells) const {
   Impl& im = impl();
   GraphRecords out;
   // A version-1 store opened read-only has no nodes table: the same columns of keyframes.
@@ -333,6 +358,7 @@ KeyframeStore::GraphRecords KeyframeStore::load_graph() const {
       if (sqlite3_column_type(row, 6) != SQLITE_NULL) {
         const auto d = column_blob(row, 6, "descriptor");
         n.descriptor = decode_descriptor(d.first, d.second);
+        if (!descriptor_cells) mapping::release_cells(n.descriptor);
         rec.has_descriptor = true;
       }
       n.pose = n.odom_pose;

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 #include <random>
 #include <set>
 
@@ -128,4 +129,39 @@ TEST(MappingPlaceIndex, SpatialGridVisitsEveryNodeWithinTheRadiusAfterMoves) {
       }
     }
   }
+}
+
+TEST(MappingPlaceIndex, SameLoopsWithTheDescriptorCellsReadBackFromOutsideTheGraph) {
+  // The aggregator keeps the cells in its store (Mapper::keep_descriptor_cells_outside): the
+  // nodes hold ring keys only and a search reads its shortlist's cells back. Two vehicles, so
+  // that the loops between them come from the descriptors' candidates.
+  const auto truth = out_and_back();
+  const auto a = drive("a", {truth.begin(), truth.begin() + 21}, 0.0, 1);
+  const auto b = drive("b", {truth.begin() + 21, truth.end()}, 0.0, 2);
+  Mapper outside(config_with(PlaceSearch::kIndexed)), inside(config_with(PlaceSearch::kIndexed));
+  std::map<KeyframeKey, PlaceDescriptor> kept;  // the store's place
+  std::size_t reads = 0;
+  outside.keep_descriptor_cells_outside([&](const KeyframeKey& key) {
+    ++reads;
+    return kept.at(key);
+  });
+  for (const std::vector<Keyframe>* stream : {&a, &b}) {
+    for (const auto& kf : *stream) {
+      const PlaceDescriptor d = outside.describe(kf.distributions);
+      kept[kf.key] = d;
+      outside.add_keyframe(kf, nullptr, &d);
+      inside.add_keyframe(kf);
+      outside.optimize();
+      inside.optimize();
+    }
+  }
+  EXPECT_FALSE(outside.loops().empty());
+  expect_same_mapping(outside, inside);
+  EXPECT_GT(reads, 0u);
+  EXPECT_EQ(outside.descriptor_loads(), reads);
+  for (const KeyframeNode& n : outside.graph().nodes()) {
+    EXPECT_TRUE(n.descriptor.cells.empty());
+    EXPECT_EQ(n.descriptor.ring_key, kept.at(n.key).ring_key);
+  }
+  for (const KeyframeNode& n : inside.graph().nodes()) EXPECT_FALSE(n.descriptor.cells.empty());
 }

@@ -616,3 +616,55 @@ TEST(KeyframeStore, InvalidKeyframesAreRefusedAndABatchIsAllOrNothing) {
 }
 
 }  // namespace
+
+TEST(KeyframeStore, DescriptorsAreReadBackOneByOneAndTheGraphWithRingKeysOnly) {
+  const fs::path path = temp_dir() / "store.db";
+  KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing);
+  std::vector<Keyframe> keyframes;
+  std::vector<mapping::PlaceDescriptor> descriptors;
+  for (std::uint64_t id = 0; id < 3; ++id) {
+    keyframes.push_back(make_keyframe("s", id, static_cast<std::int64_t>(id) * 100, 10));
+    mapping::PlaceDescriptor d;
+    d.rings = 2;
+    d.sectors = 3;
+    d.cells = {1, 0, static_cast<std::uint8_t>(7 + id), 255, 0, 9};
+    d.ring_key = {0.5f, 2.0f / 3.0f + static_cast<float>(id)};
+    descriptors.push_back(d);
+  }
+  std::vector<const Keyframe*> to_store;
+  std::vector<const mapping::PlaceDescriptor*> described;
+  for (std::size_t i = 0; i < keyframes.size(); ++i) {
+    to_store.push_back(&keyframes[i]);
+    described.push_back(&descriptors[i]);
+  }
+  ASSERT_EQ(store.insert_keyframes(to_store, described), 3u);
+
+  for (std::uint64_t id = 0; id < 3; ++id) {
+    const mapping::PlaceDescriptor d = store.load_descriptor({"s", id});
+    EXPECT_EQ(d.rings, 2);
+    EXPECT_EQ(d.sectors, 3);
+    EXPECT_EQ(d.cells, descriptors[id].cells) << id;
+    EXPECT_EQ(d.ring_key, descriptors[id].ring_key) << id;
+  }
+  expect_store_error(
+      [&] {
+        store.load_descriptor({"s", 3});
+      },
+      path, "cannot read the descriptor of keyframe 's'/3: no such keyframe");
+
+  const auto with_cells = store.load_graph();
+  const auto ring_keys_only = store.load_graph(/*descriptor_cells=*/false);
+  ASSERT_EQ(with_cells.nodes.size(), 3u);
+  ASSERT_EQ(ring_keys_only.nodes.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_TRUE(ring_keys_only.nodes[i].has_descriptor);
+    EXPECT_TRUE(ring_keys_only.nodes[i].node.descriptor.cells.empty());
+    EXPECT_EQ(ring_keys_only.nodes[i].node.descriptor.ring_key,
+              with_cells.nodes[i].node.descriptor.ring_key);
+    EXPECT_EQ(with_cells.nodes[i].node.descriptor.cells.size(), 6u);
+  }
+
+  // A node row without a descriptor (a migrated store before its replay) has none to read.
+  raw_sql(path, "UPDATE nodes SET descriptor = NULL WHERE id = 1");
+  expect_store_error([&] { store.load_descriptor({"s", 1}); }, path, "none stored");
+}

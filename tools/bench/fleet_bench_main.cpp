@@ -343,7 +343,7 @@ int main(int argc, char** argv) {
   std::vector<double> loop_latency_ms;
   double background_cpu_s = 0.0;
   CountingSink sink;
-  std::size_t tiles = 0, map_pending = 0, diverged = 0;
+  std::size_t tiles = 0, map_pending = 0, diverged = 0, descriptor_loads = 0;
   mapping::MapperStats final_stats;
   mapping::TileMapStats tile_stats;
   std::string stop_reason;  // why the feeding stopped before the target ("" if it did not)
@@ -490,6 +490,7 @@ int main(int argc, char** argv) {
     live_digest = graph_digest(core.mapper());
     live_keyframes = core.mapper().graph().size();
     diverged = core.mapper().stats().diverged;
+    descriptor_loads = core.mapper().descriptor_loads();
     final_stats = core.mapper().stats();
   }
   const double wall_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
@@ -637,6 +638,7 @@ int main(int argc, char** argv) {
       {"wrong_group_merges", wrong_merges},
       {"diverged_solves", diverged},
       {"candidates_verified", final_stats.candidates},
+      {"descriptors_read_back", descriptor_loads},
       {"proximity_candidates_verified", final_stats.proximity_candidates},
       {"proximity_candidates_accepted", final_stats.proximity_verified},
       {"proximity_candidates_skipped", final_stats.proximity_skipped},

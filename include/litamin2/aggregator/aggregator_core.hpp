@@ -153,6 +153,8 @@ class AggregatorCore {
 
  private:
   void recover_from_tables(const Progress& progress);
+  /// The mapper reads descriptor cells back from the store (every node's is there).
+  void keep_descriptor_cells_in_store();
   void replay(const Progress& progress);
   /// Stores the loops from index `first_new` on and the poses that changed.
   void save_changes(std::size_t first_new);

@@ -40,6 +40,12 @@ class LoopDetector {
   /// `config` must outlive the detector.
   explicit LoopDetector(const MapperConfig& config) : config_(config) {}
 
+  /// Nodes whose descriptor has no cells are compared through `loader` (empty: none may lack
+  /// them).
+  void set_descriptor_loader(DescriptorLoader loader) { loader_ = std::move(loader); }
+  /// Descriptors read back through the loader so far.
+  std::size_t descriptor_loads() const { return descriptor_loads_; }
+
   /// The loop of node `query` (with its distributions) with the keyframes present, if a
   /// candidate is verified; counts candidates, verified and rejected ones in `stats` and the
   /// stages' CPU time in `cpu`.
@@ -65,8 +71,12 @@ class LoopDetector {
   /// candidate's sensor frame by odometry.
   VoxelMap submap_of(std::uint32_t candidate, const KeyframeGraph& graph,
                      DistributionCache& cache) const;
+  /// The node's descriptor with its cells: the node's own, or read back into `loaded`.
+  const PlaceDescriptor& with_cells(const KeyframeNode& node, PlaceDescriptor& loaded) const;
 
   const MapperConfig& config_;
+  DescriptorLoader loader_;
+  mutable std::size_t descriptor_loads_ = 0;
 };
 
 }  // namespace litamin2::mapping

@@ -95,6 +95,15 @@ class Mapper {
   void restore(std::vector<KeyframeNode> nodes, const std::vector<LoopEdge>& loops,
                const std::vector<LoopEdge>& pending_merges = {});
 
+  /// The descriptors' cells (1.2 kB a keyframe, most of what a node holds) live outside the
+  /// graph from now on: the nodes keep their ring keys, which the place index shortlists by,
+  /// and a search reads the shortlisted keyframes' cells back through `loader` (the
+  /// aggregator's store). Releases the cells of every node held now, and of each keyframe added
+  /// later once its own search is done.
+  void keep_descriptor_cells_outside(DescriptorLoader loader);
+  /// Descriptors read back through the loader so far.
+  std::size_t descriptor_loads() const;
+
   bool contains(const KeyframeKey& key) const;
   const KeyframeNode* node(const KeyframeKey& key) const;
   const KeyframeGraph& graph() const;

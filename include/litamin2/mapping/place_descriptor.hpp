@@ -6,16 +6,18 @@
 /// columns, so comparing under every column shift is yaw invariant and gives the yaw.
 
 #include "litamin2/core/distribution.hpp"
+#include "litamin2/core/keyframe.hpp"
 #include "litamin2/mapping/mapper_config.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace litamin2::mapping {
 
-/// A keyframe's descriptor as the mapper keeps it in memory for every keyframe (and the store
-/// in its nodes table): 1 byte per cell, so that a million keyframes' descriptors fit in
-/// about 1.3 GB. The sector keys and column norms that the comparison needs are derived from
+/// A keyframe's descriptor as the store keeps it in its nodes table (and the mapper in memory,
+/// unless Mapper::keep_descriptor_cells_outside: then its ring key only): 1 byte per cell,
+/// 1.2 kB a keyframe. The sector keys and column norms that the comparison needs are derived from
 /// the cells when two descriptors are compared (match_descriptors).
 struct PlaceDescriptor {
   int rings = 0;
@@ -27,6 +29,16 @@ struct PlaceDescriptor {
   /// ring-key index, ring_key_index.hpp).
   std::vector<float> ring_key;
 };
+
+/// Reads a keyframe's place descriptor, cells included, back from where its owner keeps it
+/// (the aggregator's store), for graphs whose nodes hold their ring keys only
+/// (Mapper::keep_descriptor_cells_outside).
+using DescriptorLoader = std::function<PlaceDescriptor(const KeyframeKey&)>;
+
+/// Frees the descriptor's cells (their memory too), keeping its ring key.
+inline void release_cells(PlaceDescriptor& descriptor) {
+  std::vector<std::uint8_t>().swap(descriptor.cells);
+}
 
 /// Column shifts on each side of the sector keys' best alignment that the full comparison
 /// tries.

@@ -131,7 +131,12 @@ class KeyframeStore {
     /// The loops between groups waiting for their merge's confirmation, oldest first.
     std::vector<mapping::LoopEdge> pending_merges;
   };
-  GraphRecords load_graph() const;
+  /// `descriptor_cells` false: each node's descriptor keeps its ring key only (a mapper that
+  /// reads the cells back with load_descriptor, Mapper::keep_descriptor_cells_outside).
+  GraphRecords load_graph(bool descriptor_cells = true) const;
+  /// One keyframe's stored descriptor, cells included. Throws StoreError if the keyframe has
+  /// none (missing, or a store of schema version 1) or its blob is corrupt.
+  mapping::PlaceDescriptor load_descriptor(const KeyframeKey& key) const;
   /// Stores descriptors of nodes that have none (after a migration).
   void store_descriptors(
       const std::vector<std::pair<KeyframeKey, const mapping::PlaceDescriptor*>>& descriptors);
