@@ -289,17 +289,28 @@ void KeyframeStore::Batch::commit() {
   done_ = true;
 }
 
+namespace {
+
+/// Binds `key` to `s` (?1 stream, ?2 id) and steps to its row; throws StoreError ("`what`: no
+/// such keyframe") when there is none. The caller holds a ResetOnExit on `s` while it reads.
+void step_to_keyframe(const std::string& path, Statement& s, const KeyframeKey& key,
+                      const std::string& what) {
+  if (key.id > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+    throw StoreError(path, what + ": no such keyframe");
+  s.bind_text(1, key.stream);
+  s.bind(2, static_cast<std::int64_t>(key.id));
+  if (!s.step(what)) throw StoreError(path, what + ": no such keyframe");
+}
+
+}  // namespace
+
 std::vector<Distribution> KeyframeStore::load_distributions(
     const KeyframeKey& key, const RegularizerConfig& regularizer) const {
   Impl& im = impl();
   const std::string what = "cannot read the distributions of keyframe " + describe(key);
-  if (key.id > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
-    throw StoreError(im.path, what + ": no such keyframe");
   Statement& s = *im.distributions;
   ResetOnExit reset{s};
-  s.bind_text(1, key.stream);
-  s.bind(2, static_cast<std::int64_t>(key.id));
-  if (!s.step(what)) throw StoreError(im.path, what + ": no such keyframe");
+  step_to_keyframe(im.path, s, key, what);
   try {
     const auto blob = column_blob(s.get(), 0, "distributions");
     return decode_distributions(blob.first, blob.second, regularizer);
@@ -312,13 +323,9 @@ mapping::PlaceDescriptor KeyframeStore::load_descriptor(const KeyframeKey& key) 
   Impl& im = impl();
   const std::string what = "cannot read the descriptor of keyframe " + describe(key);
   if (!im.descriptor) throw StoreError(im.path, what + ": the store has no descriptors");
-  if (key.id > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
-    throw StoreError(im.path, what + ": no such keyframe");
   Statement& s = *im.descriptor;
   ResetOnExit reset{s};
-  s.bind_text(1, key.stream);
-  s.bind(2, static_cast<std::int64_t>(key.id));
-  if (!s.step(what)) throw StoreError(im.path, what + ": no such keyframe");
+  step_to_keyframe(im.path, s, key, what);
   if (sqlite3_column_type(s.get(), 0) == SQLITE_NULL)
     throw StoreError(im.path, what + ": none stored");
   try {
