@@ -10,6 +10,10 @@
 #   PRELOAD=0    the replay reads scans while publishing instead of publishing CDR bytes
 #                serialised before the start (litamin2-replay --preload, the default)
 #   STAGGER=1    spread the streams over the period (litamin2-replay --stagger)
+#   BEST_EFFORT=1  the replay's writers best effort keep-last (litamin2-replay --best-effort), as
+#                ROS 2 LiDAR drivers publish (sensor-data QoS): the daemon's readers match them,
+#                so nothing is acknowledged; a scan the daemon's reader has no room for is lost
+#                and counted as dropped (default: reliable keep-all, nothing lost)
 #   ZERO_COPY=1  the streams' opt-in same-host zero-copy input instead of PointCloud2: each
 #                stream gets zero_copy_topic rt/<id>/plain_scan and the replay publishes
 #                litamin2_zero_copy/PlainScan there into loaned samples (litamin2-replay
@@ -194,6 +198,7 @@ run_once() {
   # STAGGER=1 spreads the streams' frames over the period (independent sensors); default: every
   # stream publishes at the same instant, the worst case for latency.
   if [ "${STAGGER:-0}" = 1 ] && [ "$rate" != max ]; then replay_args+=(--stagger); fi
+  if [ "${BEST_EFFORT:-0}" = 1 ]; then replay_args+=(--best-effort); fi
   # The daemon's CPU is counted from when the replay starts publishing (after its preload and
   # discovery), read from /proc/<pid>/stat (utime + stime, clock ticks).
   "${replay_cpu[@]}" "$tools/replay/litamin2-replay" --domain 19 --profile loopback \
@@ -337,6 +342,7 @@ result = {
     "other_processes_share_of_daemon_core": other_load,
     "wall_s": end - start,
     "input": "plain_scan" if os.environ.get("ZERO_COPY", "0") == "1" else "pointcloud2",
+    "input_reliability": "best effort" if os.environ.get("BEST_EFFORT", "0") == "1" else "reliable",
     "scheduling": os.environ.get("SCHEDULING") or "default (other)",
     "tracker": os.environ.get("TRACKER") or "default",
     "daemon_prefix": os.environ.get("DAEMON_PREFIX") or None,
