@@ -23,6 +23,8 @@ MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
   place.read_range("max_descriptor_distance", p.max_descriptor_distance, 0.0, 1.0);
   place.read_range("min_travel_gap", p.min_travel_gap, 0.0, 1e6);
   place.read_range("proximity_radius", p.proximity_radius, 0.0, 1e4);
+  place.read_range("proximity_cell_size", p.proximity_cell_size, 0.1, 1e4);
+  place.read_range("proximity_cell_keyframes", p.proximity_cell_keyframes, 0, 1000000);
   place.read_range("verification_budget_per_keyframe", p.verification_budget_per_keyframe, 0.0,
                    1e3);
   place.read_range("proximity_max_descriptor_distance", p.proximity_max_descriptor_distance, 0.0,
@@ -75,6 +77,8 @@ MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
   graph.read("local_widen_for_loops", g.local_widen_for_loops);
   graph.read_range("segment_keyframes", g.segment_keyframes, 1, 100'000);
   graph.read_range("full_pass_max_segments", g.full_pass_max_segments, 0, 100'000'000);
+  graph.read_range("full_pass_min_shift", g.full_pass_min_shift, 0.0, 10.0);
+  graph.read_range("full_pass_min_turn_deg", g.full_pass_min_turn_deg, 0.0, 10.0);
   graph.read_range("iterative_min_free_poses", g.iterative_min_free_poses, 0, 100'000'000);
   graph.read_range("max_iterations", g.max_iterations, 1, 10000);
   graph.read_range("threads", g.threads, 1, 256);
@@ -103,6 +107,8 @@ std::string mapper_config_to_yaml(const MapperConfig& c) {
   out << YAML::Key << "max_descriptor_distance" << YAML::Value << c.place.max_descriptor_distance;
   out << YAML::Key << "min_travel_gap" << YAML::Value << c.place.min_travel_gap;
   out << YAML::Key << "proximity_radius" << YAML::Value << c.place.proximity_radius;
+  out << YAML::Key << "proximity_cell_size" << YAML::Value << c.place.proximity_cell_size;
+  out << YAML::Key << "proximity_cell_keyframes" << YAML::Value << c.place.proximity_cell_keyframes;
   out << YAML::Key << "verification_budget_per_keyframe" << YAML::Value
       << c.place.verification_budget_per_keyframe;
   out << YAML::Key << "proximity_max_descriptor_distance" << YAML::Value
@@ -153,6 +159,8 @@ std::string mapper_config_to_yaml(const MapperConfig& c) {
   out << YAML::Key << "local_widen_for_loops" << YAML::Value << c.graph.local_widen_for_loops;
   out << YAML::Key << "segment_keyframes" << YAML::Value << c.graph.segment_keyframes;
   out << YAML::Key << "full_pass_max_segments" << YAML::Value << c.graph.full_pass_max_segments;
+  out << YAML::Key << "full_pass_min_shift" << YAML::Value << c.graph.full_pass_min_shift;
+  out << YAML::Key << "full_pass_min_turn_deg" << YAML::Value << c.graph.full_pass_min_turn_deg;
   out << YAML::Key << "iterative_min_free_poses" << YAML::Value << c.graph.iterative_min_free_poses;
   out << YAML::Key << "max_iterations" << YAML::Value << c.graph.max_iterations;
   out << YAML::Key << "threads" << YAML::Value << c.graph.threads;

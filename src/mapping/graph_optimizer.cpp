@@ -550,8 +550,10 @@ void GraphOptimizer::solve_full_pass(FullPassProblem& problem) {
   problem.cpu_s = thread_cpu_seconds() - cpu;
 }
 
-void GraphOptimizer::apply_full_pass(const FullPassProblem& problem, KeyframeGraph& graph) {
-  if (!problem.result.usable) return;
+std::size_t GraphOptimizer::apply_full_pass(const FullPassProblem& problem, KeyframeGraph& graph,
+                                            double min_shift, double min_turn) {
+  if (!problem.result.usable) return 0;
+  std::size_t moved = 0;
   std::vector<Eigen::Isometry3d> correction(problem.poses.size());
   for (std::size_t s = 0; s < problem.poses.size(); ++s)
     correction[s] = problem.poses[s] * problem.before[s].inverse();
@@ -565,8 +567,15 @@ void GraphOptimizer::apply_full_pass(const FullPassProblem& problem, KeyframeGra
                                ? problem.segment_of_node[n]
                                : problem.last_segment_of_stream[node.stream];
     if (s < 0) continue;
-    graph.set_pose(n, correction[static_cast<std::size_t>(s)] * node.pose);
+    const Eigen::Isometry3d pose = correction[static_cast<std::size_t>(s)] * node.pose;
+    if ((min_shift > 0.0 || min_turn > 0.0) &&
+        (pose.translation() - node.pose.translation()).norm() < min_shift &&
+        Eigen::AngleAxisd(pose.linear() * node.pose.linear().transpose()).angle() < min_turn)
+      continue;
+    graph.set_pose(n, pose);
+    ++moved;
   }
+  return moved;
 }
 
 }  // namespace litamin2::mapping

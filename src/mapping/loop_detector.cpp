@@ -28,46 +28,23 @@ std::optional<LoopEdge> LoopDetector::detect(std::uint32_t query,
                                              const KeyframeGraph& graph, DistributionCache& cache,
                                              MapperStats& stats, MapperCpu& cpu,
                                              SearchScope scope) const {
-  // The nearest keyframe by pose estimate first, then the descriptor's candidate.
-  std::vector<LoopCandidate> candidates;
   double t = thread_cpu_seconds();
-  const double max_distance = config_.place.proximity_max_descriptor_distance;
-  bool first_is_proximity = false;
-  if (scope == SearchScope::kAll) {
-    if (auto c = proximity_candidate(query, graph)) {
-      PlaceDescriptor loaded_query, loaded_candidate;
-      if (max_distance > 0.0 && match_descriptors(with_cells(graph.node(query), loaded_query),
-                                                  with_cells(graph.node(c->node), loaded_candidate))
-                                        .distance > max_distance) {
-        ++stats.proximity_skipped;
-      } else {
-        candidates.push_back(*c);
-        first_is_proximity = true;
-      }
-    }
-  }
-  double now = thread_cpu_seconds();
-  cpu.proximity_s += now - t;
-  t = now;
-  // The descriptor's candidate may be the same keyframe: its yaw is still another start.
-  if (auto c = descriptor_candidate(query, graph, scope)) candidates.push_back(*c);
-  now = thread_cpu_seconds();
-  cpu.descriptor_search_s += now - t;
-  t = now;
-  for (std::size_t k = 0; k < candidates.size(); ++k) {
-    const LoopCandidate& candidate = candidates[k];
-    const bool proximity = k == 0 && first_is_proximity;
+  auto lap = [&t](double& stage) {
+    const double now = thread_cpu_seconds();
+    stage += now - t;
+    t = now;
+  };
+  // The candidate's verification: the loop edge if the registration accepts it.
+  auto verify = [&](const LoopCandidate& candidate, bool proximity) -> std::optional<LoopEdge> {
     ++stats.candidates;
     if (proximity) ++stats.proximity_candidates;
     const VoxelMap submap = submap_of(candidate.node, graph, cache);
     const LoopVerification v = verify_loop(distributions, submap, candidate.initial,
                                            config_.verification, M_PI / config_.place.sectors);
-    now = thread_cpu_seconds();
-    cpu.verification_s += now - t;
-    t = now;
+    lap(cpu.verification_s);
     if (!v.accepted) {
       ++stats.rejected;
-      continue;
+      return std::nullopt;
     }
     ++stats.verified;
     if (proximity) ++stats.proximity_verified;
@@ -84,7 +61,32 @@ std::optional<LoopEdge> LoopDetector::detect(std::uint32_t query,
         1.0 / (st * st);
     edge.information = info.asDiagonal();
     return edge;
+  };
+  // The nearest keyframe by pose estimate first. Only when it is missing or rejected is the
+  // descriptor searched: in a fleet that has driven its streets before, most keyframes are
+  // closed by proximity, and a descriptor search (the ring-key index, whose cost grows with
+  // the map, and descriptors read back from the store) would find a candidate never verified.
+  const double max_distance = config_.place.proximity_max_descriptor_distance;
+  if (scope == SearchScope::kAll) {
+    const auto c = proximity_candidate(query, graph);
+    bool skipped = false;
+    if (c && max_distance > 0.0) {
+      PlaceDescriptor loaded_query, loaded_candidate;
+      skipped = match_descriptors(with_cells(graph.node(query), loaded_query),
+                                  with_cells(graph.node(c->node), loaded_candidate))
+                    .distance > max_distance;
+      if (skipped) ++stats.proximity_skipped;
+    }
+    lap(cpu.proximity_s);
+    if (c && !skipped) {
+      if (auto edge = verify(*c, true)) return edge;
+    }
   }
+  // The descriptor's candidate may be the same keyframe: its yaw is still another start.
+  ++stats.descriptor_searches;
+  const auto c = descriptor_candidate(query, graph, scope);
+  lap(cpu.descriptor_search_s);
+  if (c) return verify(*c, false);
   return std::nullopt;
 }
 
@@ -125,7 +127,10 @@ std::optional<LoopCandidate> LoopDetector::proximity_candidate(std::uint32_t que
       for (const auto& [id, n] : groups.at(s).nodes) consider(n);
     }
   } else {
-    graph.grid().visit_near(q.pose.translation(), radius, consider);
+    graph.grid().visit_nearest_first(
+        q.pose.translation(), radius,
+        static_cast<std::size_t>(config_.place.proximity_cell_keyframes), consider,
+        [&best_sq] { return best_sq; });
   }
   if (best < 0) return std::nullopt;
   const KeyframeNode& b = graph.node(static_cast<std::uint32_t>(best));

@@ -17,7 +17,7 @@ namespace litamin2::mapping {
 struct Mapper::Impl {
   Impl(const MapperConfig& c, std::unique_ptr<DistributionCache> distribution_cache)
       : config((validate(c), c)),
-        graph(config.place.rings, std::max(config.place.proximity_radius, 1.0)),
+        graph(config.place.rings, config.place.proximity_cell_size),
         cache(distribution_cache ? std::move(distribution_cache)
                                  : std::make_unique<DistributionCache>()),
         detector(config),
@@ -241,7 +241,9 @@ FullPassProblem Mapper::full_pass_problem() const {
 }
 
 void Mapper::apply_full_pass(const FullPassProblem& problem) {
-  GraphOptimizer::apply_full_pass(problem, impl_->graph);
+  const PoseGraphConfig& g = impl_->config.graph;
+  impl_->stats.full_pass_keyframes_moved += GraphOptimizer::apply_full_pass(
+      problem, impl_->graph, g.full_pass_min_shift, g.full_pass_min_turn_deg * M_PI / 180.0);
   if (problem.result.usable) ++impl_->stats.full_passes;
   if (problem.result.diverged) ++impl_->stats.diverged;
 }

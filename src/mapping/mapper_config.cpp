@@ -14,6 +14,10 @@ void validate(const MapperConfig& c) {
   require(c.place.proximity_max_descriptor_distance >= 0.0 &&
               c.place.proximity_max_descriptor_distance <= 1.0,
           "place_recognition.proximity_max_descriptor_distance must be in [0, 1]");
+  require(c.place.proximity_cell_size > 0.0,
+          "place_recognition.proximity_cell_size must be positive");
+  require(c.place.proximity_cell_keyframes >= 0,
+          "place_recognition.proximity_cell_keyframes must be >= 0");
   require(c.place.verification_budget_per_keyframe >= 0.0,
           "place_recognition.verification_budget_per_keyframe must be >= 0");
   require(c.verification.min_fitness >= 0.0 && c.verification.min_fitness <= 1.0,
@@ -35,6 +39,8 @@ void validate(const MapperConfig& c) {
   require(c.graph.local_max_free_keyframes >= 0,
           "pose_graph.local_max_free_keyframes must be >= 0 (0 = no bound)");
   require(c.graph.segment_keyframes >= 1, "pose_graph.segment_keyframes must be >= 1");
+  require(c.graph.full_pass_min_shift >= 0.0 && c.graph.full_pass_min_turn_deg >= 0.0,
+          "pose_graph.full_pass_min_shift and full_pass_min_turn_deg must be >= 0");
   require(c.graph.full_pass_max_segments >= 0,
           "pose_graph.full_pass_max_segments must be >= 0 (0 = no bound)");
   require(c.graph.iterative_min_free_poses >= 0,

@@ -21,14 +21,12 @@ void SpatialGrid::move(std::uint32_t node, const Eigen::Vector3d& position) {
   std::uint64_t& current = cell_of_.at(node);
   if (k == current) return;
   std::vector<std::uint32_t>& old_cell = cells_[current];
-  const auto it = std::find(old_cell.begin(), old_cell.end(), node);
-  if (it != old_cell.end()) {
-    *it = old_cell.back();
-    old_cell.pop_back();
-  }
+  const auto it = std::lower_bound(old_cell.begin(), old_cell.end(), node);
+  if (it != old_cell.end() && *it == node) old_cell.erase(it);
   if (old_cell.empty()) cells_.erase(current);
   current = k;
-  cells_[k].push_back(node);
+  std::vector<std::uint32_t>& new_cell = cells_[k];
+  new_cell.insert(std::lower_bound(new_cell.begin(), new_cell.end(), node), node);
 }
 
 }  // namespace litamin2::mapping

@@ -21,6 +21,8 @@ TEST(MappingConfig, EmittedYamlReadsBack) {
   config.place.loop_spacing = 40.0;
   config.place.verification_budget_per_keyframe = 0.25;
   config.place.proximity_max_descriptor_distance = 0.5;
+  config.place.proximity_cell_size = 2.5;
+  config.place.proximity_cell_keyframes = 0;
   config.graph.local_hold_loops = 3;
   config.verification.min_fitness = 0.7;
   config.verification.max_isotropy = 0.05;
@@ -55,6 +57,12 @@ TEST(MappingConfig, BadKeysAndValuesAreNamed) {
             std::string::npos);
   EXPECT_NE(message("place_recognition: {proximity_max_descriptor_distance: 2}")
                 .find("place_recognition.proximity_max_descriptor_distance"),
+            std::string::npos);
+  EXPECT_NE(message("place_recognition: {proximity_cell_size: 0}")
+                .find("place_recognition.proximity_cell_size"),
+            std::string::npos);
+  EXPECT_NE(message("place_recognition: {proximity_cell_keyframes: -3}")
+                .find("place_recognition.proximity_cell_keyframes"),
             std::string::npos);
   EXPECT_NE(message("pose_graph: {local_hold_loops: -1}").find("pose_graph.local_hold_loops"),
             std::string::npos);

@@ -36,6 +36,8 @@ TEST(MappingFullPass, RepeatedPassesKeepRotationsOrthonormalAndPosesStill) {
   const auto keyframes = drive("a", out_and_back(), 0.05, 1);
   MapperConfig config;
   config.place.min_travel_gap = 20.0;
+  config.graph.full_pass_min_shift = 0.0;  // every pass rewrites every pose
+  config.graph.full_pass_min_turn_deg = 0.0;
   Mapper mapper(config);
   for (const auto& kf : keyframes) {
     mapper.add_keyframe(kf);
@@ -111,4 +113,62 @@ TEST(MappingFullPass, ABoundedPassSolvesFewerSegmentsAndStillCorrects) {
   // Tolerance: rigid stretches of ~a quarter of the drive cannot bend as ten-keyframe ones
   // can; the local optimisations have already placed both, so they stay within decimetres.
   EXPECT_LT(worst, 0.5);
+}
+
+TEST(MappingFullPass, APassLeavesTheKeyframesItWouldMoveLessThanTheThreshold) {
+  // pose_graph.full_pass_min_shift: the same solved pass applied to two identical mappers,
+  // one moving every keyframe, one with the threshold at the median shift: below it a
+  // keyframe keeps its pose bit for bit, above it the pose is the other mapper's.
+  const auto keyframes = drive("a", out_and_back(), 0.05, 1);
+  MapperConfig config;
+  config.place.min_travel_gap = 20.0;
+  config.graph.full_pass_min_shift = 0.0;
+  config.graph.full_pass_min_turn_deg = 0.0;
+  auto build = [&](const MapperConfig& c) {
+    Mapper m(c);
+    for (const auto& kf : keyframes) {
+      m.add_keyframe(kf);
+      m.optimize();
+    }
+    return m;
+  };
+  Mapper every = build(config);
+  ASSERT_GT(every.loops().size(), 5u);
+  FullPassProblem problem = every.full_pass_problem();
+  GraphOptimizer::solve_full_pass(problem);
+  ASSERT_TRUE(problem.result.usable);
+  const std::vector<KeyframePose> before = every.poses();
+  every.apply_full_pass(problem);
+  const std::vector<KeyframePose> after = every.poses();
+  ASSERT_EQ(after.size(), before.size());
+  std::vector<double> shift(before.size());
+  for (std::size_t i = 0; i < before.size(); ++i)
+    shift[i] = (after[i].pose.translation() - before[i].pose.translation()).norm();
+  std::vector<double> sorted = shift;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const double median = sorted[sorted.size() / 2];
+  ASSERT_GT(median, 1e-6);
+
+  MapperConfig threshold_config = config;
+  threshold_config.graph.full_pass_min_shift = median;
+  threshold_config.graph.full_pass_min_turn_deg = 10.0;  // the shift decides
+  Mapper thresholded = build(threshold_config);
+  ASSERT_EQ(thresholded.poses().size(), before.size());
+  thresholded.apply_full_pass(problem);
+  const std::vector<KeyframePose> kept = thresholded.poses();
+  std::size_t moved = 0, left = 0;
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    ASSERT_EQ(kept[i].key, before[i].key);
+    if (shift[i] < median) {
+      EXPECT_TRUE(kept[i].pose.matrix() == before[i].pose.matrix()) << i;
+      ++left;
+    } else {
+      EXPECT_TRUE(kept[i].pose.matrix() == after[i].pose.matrix()) << i;
+      ++moved;
+    }
+  }
+  EXPECT_GT(left, 0u);
+  EXPECT_GT(moved, 0u);
+  EXPECT_EQ(thresholded.stats().full_pass_keyframes_moved, moved);
+  EXPECT_EQ(every.stats().full_pass_keyframes_moved, before.size());
 }

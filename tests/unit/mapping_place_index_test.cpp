@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -122,7 +123,9 @@ TEST(MappingPlaceIndex, SpatialGridVisitsEveryNodeWithinTheRadiusAfterMoves) {
   for (int q = 0; q < 100; ++q) {
     const Eigen::Vector3d p(u(rng), u(rng), 0.0);
     std::set<std::uint32_t> visited;
-    grid.visit_near(p, 30.0, [&](std::uint32_t n) { EXPECT_TRUE(visited.insert(n).second); });
+    grid.visit_nearest_first(
+        p, 30.0, 0, [&](std::uint32_t n) { EXPECT_TRUE(visited.insert(n).second); },
+        [] { return std::numeric_limits<double>::infinity(); });
     for (std::uint32_t n = 0; n < at.size(); ++n) {
       if ((at[n] - p).norm() < 30.0) {
         EXPECT_TRUE(visited.count(n)) << n;
@@ -164,4 +167,91 @@ TEST(MappingPlaceIndex, SameLoopsWithTheDescriptorCellsReadBackFromOutsideTheGra
     EXPECT_EQ(n.descriptor.ring_key, kept.at(n.key).ring_key);
   }
   for (const KeyframeNode& n : inside.graph().nodes()) EXPECT_FALSE(n.descriptor.cells.empty());
+}
+
+TEST(MappingPlaceIndex, SpatialGridNearestFirstFindsTheNearestNodeWithoutVisitingTheWholeDisc) {
+  // Dense enough that the nearest node is in the query's cell or the next ring: the search
+  // must stop there and still return the brute-force nearest (ties by node number).
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-100.0, 100.0);
+  SpatialGrid grid(5.0);
+  std::vector<Eigen::Vector3d> at;
+  for (std::uint32_t n = 0; n < 4000; ++n) {
+    at.emplace_back(std::round(u(rng)), std::round(u(rng)), 0.0);  // many equal distances
+    grid.add(n, at.back());
+  }
+  for (std::uint32_t n = 0; n < 4000; n += 5) {
+    at[n] = Eigen::Vector3d(std::round(u(rng)), std::round(u(rng)), 0.0);
+    grid.move(n, at[n]);
+  }
+  std::size_t visits = 0, in_disc = 0;
+  for (int q = 0; q < 300; ++q) {
+    const Eigen::Vector3d p(std::round(u(rng)), std::round(u(rng)) + 0.5, 0.0);
+    std::int64_t expected = -1;
+    double expected_sq = 30.0 * 30.0;
+    for (std::uint32_t n = 0; n < at.size(); ++n) {
+      const double d_sq = (at[n] - p).squaredNorm();
+      if (d_sq < 30.0 * 30.0) ++in_disc;
+      if (d_sq < expected_sq || (d_sq == expected_sq && expected >= 0 && n < expected)) {
+        expected_sq = d_sq;
+        expected = n;
+      }
+    }
+    std::int64_t best = -1;
+    double best_sq = 30.0 * 30.0;
+    grid.visit_nearest_first(
+        p, 30.0, 0,
+        [&](std::uint32_t n) {
+          ++visits;
+          const double d_sq = (at[n] - p).squaredNorm();
+          if (d_sq < best_sq || (d_sq == best_sq && best >= 0 && n < best)) {
+            best_sq = d_sq;
+            best = n;
+          }
+        },
+        [&] { return best_sq; });
+    EXPECT_EQ(best, expected) << q;
+  }
+  EXPECT_LT(visits * 5, in_disc);  // the early stop: a fraction of the disc's nodes
+}
+
+TEST(MappingPlaceIndex, SpatialGridLooksAtTheLatestNodesOfACellOnlyWhenAsked) {
+  SpatialGrid grid(5.0);
+  const Eigen::Vector3d here(1.0, 1.0, 0.0), there(101.0, 1.0, 0.0);
+  for (std::uint32_t n = 0; n < 100; ++n) grid.add(n, here);
+  // Out and back again: a node re-filed in its cell keeps its place in the arrival order.
+  for (std::uint32_t n : {99u, 97u, 50u}) grid.move(n, there);
+  for (std::uint32_t n : {97u, 50u}) grid.move(n, here);
+  auto visited = [&](std::size_t per_cell) {
+    std::vector<std::uint32_t> out;
+    grid.visit_nearest_first(
+        here, 2.0, per_cell, [&](std::uint32_t n) { out.push_back(n); },
+        [] { return std::numeric_limits<double>::infinity(); });
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  EXPECT_EQ(visited(4), (std::vector<std::uint32_t>{95, 96, 97, 98}));
+  EXPECT_EQ(visited(0).size(), 99u);
+  EXPECT_EQ(visited(200).size(), 99u);
+}
+
+TEST(MappingPlaceIndex, DescriptorsAreSearchedOnlyWhenTheProximityCandidateFails) {
+  // Every keyframe is searched (no spacing): each search is either closed by its proximity
+  // candidate or goes on to the descriptors, never both.
+  const auto keyframes = drive("a", out_and_back(), 0.05, 1);
+  MapperConfig config = config_with(PlaceSearch::kIndexed);
+  Mapper by_position(config);
+  config.place.proximity_radius = 0.0;
+  Mapper by_descriptor(config);
+  for (const auto& kf : keyframes) {
+    by_position.add_keyframe(kf);
+    by_descriptor.add_keyframe(kf);
+    by_position.optimize();
+    by_descriptor.optimize();
+  }
+  const MapperStats& p = by_position.stats();
+  EXPECT_GT(p.proximity_verified, 5u);
+  EXPECT_EQ(p.descriptor_searches + p.proximity_verified, p.keyframes);
+  EXPECT_EQ(by_descriptor.stats().descriptor_searches, by_descriptor.stats().keyframes);
+  EXPECT_FALSE(by_descriptor.loops().empty());
 }

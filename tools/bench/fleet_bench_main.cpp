@@ -70,9 +70,13 @@ struct Options {
   double verification_budget = mapping::PlaceRecognitionConfig{}.verification_budget_per_keyframe;
   double proximity_max_descriptor_distance =
       mapping::PlaceRecognitionConfig{}.proximity_max_descriptor_distance;
+  double proximity_cell_size = mapping::PlaceRecognitionConfig{}.proximity_cell_size;
+  int proximity_cell_keyframes = mapping::PlaceRecognitionConfig{}.proximity_cell_keyframes;
   int segment_keyframes = 10;
   int full_pass_max_segments = mapping::PoseGraphConfig{}.full_pass_max_segments;
   int iterative_min_free_poses = mapping::PoseGraphConfig{}.iterative_min_free_poses;
+  double full_pass_min_shift = mapping::PoseGraphConfig{}.full_pass_min_shift;
+  double full_pass_min_turn_deg = mapping::PoseGraphConfig{}.full_pass_min_turn_deg;
   int tile_segment_keyframes = 10;
   int merge_confirmations = 2;
   std::size_t cache_mb = 512;
@@ -190,7 +194,19 @@ int main(int argc, char** argv) {
   app.add_option("--proximity-max-descriptor-distance", o.proximity_max_descriptor_distance,
                  "place_recognition.proximity_max_descriptor_distance")
       ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--proximity-cell-size", o.proximity_cell_size,
+                 "place_recognition.proximity_cell_size, m")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--proximity-cell-keyframes", o.proximity_cell_keyframes,
+                 "place_recognition.proximity_cell_keyframes (0: every keyframe of a cell)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--segment-keyframes", o.segment_keyframes, "pose_graph.segment_keyframes");
+  app.add_option("--full-pass-min-shift", o.full_pass_min_shift,
+                 "pose_graph.full_pass_min_shift, m")
+      ->check(CLI::Range(0.0, 10.0));
+  app.add_option("--full-pass-min-turn-deg", o.full_pass_min_turn_deg,
+                 "pose_graph.full_pass_min_turn_deg")
+      ->check(CLI::Range(0.0, 10.0));
   app.add_option("--full-pass-max-segments", o.full_pass_max_segments,
                  "pose_graph.full_pass_max_segments (0: no bound)")
       ->check(CLI::NonNegativeNumber);
@@ -229,9 +245,13 @@ int main(int argc, char** argv) {
   mapper.graph.local_widen_for_loops = o.local_widen_for_loops;
   mapper.place.verification_budget_per_keyframe = o.verification_budget;
   mapper.place.proximity_max_descriptor_distance = o.proximity_max_descriptor_distance;
+  mapper.place.proximity_cell_size = o.proximity_cell_size;
+  mapper.place.proximity_cell_keyframes = o.proximity_cell_keyframes;
   mapper.graph.segment_keyframes = o.segment_keyframes;
   mapper.graph.full_pass_max_segments = o.full_pass_max_segments;
   mapper.graph.iterative_min_free_poses = o.iterative_min_free_poses;
+  mapper.graph.full_pass_min_shift = o.full_pass_min_shift;
+  mapper.graph.full_pass_min_turn_deg = o.full_pass_min_turn_deg;
   mapper.place.merge_confirmations = o.merge_confirmations;
   mapper.graph.odometry_covariance = mapping::OdometryCovariance::kDistance;
   CoreOptions core_options;
@@ -427,7 +447,8 @@ int main(int argc, char** argv) {
           "  local solves %zu: per solve %.0f keyframes (%.0f free, %.0f held by the "
           "bound in %zu solves, %zu widened), %.0f loop edges, %.1f "
           "iterations, %.1f older ends held; proximity candidates %zu verified "
-          "(%zu accepted), %zu skipped by descriptor; %zu searches over budget\n",
+          "(%zu accepted), %zu skipped by descriptor; %zu descriptor searches; %zu searches "
+          "over budget; full passes moved %zu keyframes\n",
           local_solves, static_cast<double>(local_keyframes) / solves,
           static_cast<double>(local_free) / solves, static_cast<double>(local_bounded) / solves,
           local_bounded_solves, local_widened, static_cast<double>(local_loop_edges) / solves,
@@ -435,7 +456,9 @@ int main(int argc, char** argv) {
           ms.proximity_candidates - last_ms.proximity_candidates,
           ms.proximity_verified - last_ms.proximity_verified,
           ms.proximity_skipped - last_ms.proximity_skipped,
-          ms.searches_over_budget - last_ms.searches_over_budget);
+          ms.descriptor_searches - last_ms.descriptor_searches,
+          ms.searches_over_budget - last_ms.searches_over_budget,
+          ms.full_pass_keyframes_moved - last_ms.full_pass_keyframes_moved);
       local_solves = local_keyframes = local_loop_edges = local_iterations = local_held =
           local_free = local_bounded = local_bounded_solves = local_widened = 0;
       last_ts = ts;
@@ -609,6 +632,8 @@ int main(int argc, char** argv) {
       {"loop_spacing", o.loop_spacing},
       {"verification_budget_per_keyframe", o.verification_budget},
       {"proximity_max_descriptor_distance", o.proximity_max_descriptor_distance},
+      {"proximity_cell_size", o.proximity_cell_size},
+      {"proximity_cell_keyframes", o.proximity_cell_keyframes},
       {"keyframes", keyframes},
       {"target_keyframes", o.keyframes},
       {"stopped_early", !stop_reason.empty()},
@@ -617,6 +642,9 @@ int main(int argc, char** argv) {
       {"distributions_per_keyframe", keyframes ? distributions_total / keyframes : 0},
       {"loops", loops},
       {"full_passes", full_passes},
+      {"full_pass_min_shift", o.full_pass_min_shift},
+      {"full_pass_min_turn_deg", o.full_pass_min_turn_deg},
+      {"full_pass_keyframes_moved", final_stats.full_pass_keyframes_moved},
       {"mapping_cpu_ms_per_keyframe", windows},
       {"mapping_cpu_ms_per_keyframe_10k_windows", windows_10k},
       {"background_full_pass_cpu_ms_per_keyframe",
@@ -642,6 +670,7 @@ int main(int argc, char** argv) {
       {"proximity_candidates_verified", final_stats.proximity_candidates},
       {"proximity_candidates_accepted", final_stats.proximity_verified},
       {"proximity_candidates_skipped", final_stats.proximity_skipped},
+      {"descriptor_searches", final_stats.descriptor_searches},
       {"searches_over_budget", final_stats.searches_over_budget},
       {"ate_m", ate},
       {"keyframes_in_map_frame", in_map},

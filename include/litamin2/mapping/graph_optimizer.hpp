@@ -112,8 +112,11 @@ class GraphOptimizer {
   /// Solves it (thread-safe: touches nothing else).
   static void solve_full_pass(FullPassProblem& problem);
   /// Moves the graph's keyframes by the solved segments' corrections. Streams whose group
-  /// changed since the copy keep their poses (the next pass includes them).
-  static void apply_full_pass(const FullPassProblem& problem, KeyframeGraph& graph);
+  /// changed since the copy keep their poses (the next pass includes them), and so do
+  /// keyframes the correction would move by less than `min_shift` metres and `min_turn` rad
+  /// (PoseGraphConfig::full_pass_min_shift). Returns the keyframes moved.
+  static std::size_t apply_full_pass(const FullPassProblem& problem, KeyframeGraph& graph,
+                                     double min_shift = 0.0, double min_turn = 0.0);
 
   /// The odometry edge from keyframe a to the next present keyframe b of its stream: its
   /// uncertainty by distance, or from b's tracker covariance (PoseGraphConfig::

@@ -3,8 +3,10 @@
 /// estimate (the spatial grid) and from the place descriptors (the ring-key index's shortlist,
 /// then the full descriptor distance), each verified by LiTAMIN2 registration to a submap of
 /// the candidate and its neighbours (loop_verifier.hpp); the first verified one is the loop.
+/// The descriptors are searched only when the proximity candidate is missing or rejected.
 /// PlaceRecognitionConfig::search = kLinear scans every keyframe instead of the indexes, with
-/// the same candidates (for comparisons and tests).
+/// the same candidates while no grid cell holds more than proximity_cell_keyframes (for
+/// comparisons and tests).
 
 #include "litamin2/core/voxel_map.hpp"
 #include "litamin2/mapping/distribution_cache.hpp"

@@ -35,6 +35,16 @@ struct PlaceRecognitionConfig {
   /// (0 = off): drift is small enough that a revisit is found by position, and the estimate
   /// gives the registration a starting pose.
   double proximity_radius = 30.0;
+  /// Cell edge of the proximity search's grid of keyframe positions, metres (> 0). The
+  /// search visits cells nearest first and stops when no cell left can hold a nearer
+  /// keyframe, so a cell of a few metres keeps the visits to the street around the query.
+  double proximity_cell_size = 5.0;
+  /// In each cell the proximity search looks at the latest this many keyframes only (0 = all).
+  /// A fleet drives its streets again and again: at 10^6 keyframes a 30 m disc holds
+  /// thousands, and the nearest of them is no better a loop candidate than the nearest of a
+  /// cell's latest few, which the latest optimisations have placed. Bounds the search's cost
+  /// at any map size. The linear search (search: linear) looks at every keyframe.
+  int proximity_cell_keyframes = 32;
   /// The proximity candidate is verified only when its place descriptor is within this
   /// distance of the query's (match_descriptors, 0..1: a comparison of the two descriptors
   /// before a registration of ~10 ms); 0 = always verified. A keyframe near the pose estimate that
@@ -193,6 +203,16 @@ struct PoseGraphConfig {
   /// distant places fill it in): at 8.5x10^5 keyframes in segments of 10 it held 3.8 GB
   /// (docs/benchmarks.md, "10^6 keyframes"). 0 = no bound.
   int full_pass_max_segments = 20000;
+  /// A full pass leaves a keyframe where it is when it would move it by less than this many
+  /// metres and full_pass_min_turn_deg: a settled map's keyframes are neither rewritten in
+  /// the store nor fused into their tiles again for a millimetre, so applying a pass costs what
+  /// it changes, not the map's size (1 cm: below the loops' own error, ~1.3 cm at p50 in the
+  /// fleet bench; at 10^5 keyframes it left 31 % of the moves undone at the same ATE,
+  /// docs/benchmarks.md "Place search and full pass at any map size"). A keyframe left stays
+  /// within the bound of the latest pass's solution: the next pass measures from where it
+  /// is. 0 and 0 = every keyframe is moved.
+  double full_pass_min_shift = 0.01;
+  double full_pass_min_turn_deg = 0.01;
   /// A pose graph with at least this many free poses is solved by conjugate gradients on the
   /// normal equations (Ceres' CGNR, Jacobi preconditioner) instead of a sparse Cholesky
   /// factorisation: memory of the order of the graph's edges, none of the factor's fill-in.

@@ -15,6 +15,9 @@ struct MapperStats {
   std::size_t proximity_candidates = 0;
   std::size_t proximity_verified = 0;
   std::size_t proximity_skipped = 0;
+  /// Descriptor searches run: only for keyframes whose proximity candidate was missing,
+  /// skipped or rejected (loop_detector.hpp).
+  std::size_t descriptor_searches = 0;
   /// Place searches limited to other groups because the verification allowance was spent
   /// (verification_budget_per_keyframe).
   std::size_t searches_over_budget = 0;
@@ -30,6 +33,8 @@ struct MapperStats {
   std::size_t optimizations = 0;
   /// Full passes applied (Mapper::apply_full_pass).
   std::size_t full_passes = 0;
+  /// Keyframes the full passes moved (the others moved less than full_pass_min_shift).
+  std::size_t full_pass_keyframes_moved = 0;
   /// Local optimisations and full passes whose solution ran off (pose_graph.hpp,
   /// within_reach): refused.
   std::size_t diverged = 0;
