@@ -568,8 +568,7 @@ std::size_t GraphOptimizer::apply_full_pass(const FullPassProblem& problem, Keyf
                                : problem.last_segment_of_stream[node.stream];
     if (s < 0) continue;
     const Eigen::Isometry3d pose = correction[static_cast<std::size_t>(s)] * node.pose;
-    if ((min_shift > 0.0 || min_turn > 0.0) &&
-        (pose.translation() - node.pose.translation()).norm() < min_shift &&
+    if ((pose.translation() - node.pose.translation()).norm() < min_shift &&
         Eigen::AngleAxisd(pose.linear() * node.pose.linear().transpose()).angle() < min_turn)
       continue;
     graph.set_pose(n, pose);

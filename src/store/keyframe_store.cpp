@@ -364,8 +364,7 @@ KeyframeStore::GraphRecords KeyframeStore::load_graph(bool descriptor_cells) con
       n.covariance = decode_matrix6(covariance.first, covariance.second).cast<float>();
       if (sqlite3_column_type(row, 6) != SQLITE_NULL) {
         const auto d = column_blob(row, 6, "descriptor");
-        n.descriptor = decode_descriptor(d.first, d.second);
-        if (!descriptor_cells) mapping::release_cells(n.descriptor);
+        n.descriptor = decode_descriptor(d.first, d.second, descriptor_cells);
         rec.has_descriptor = true;
       }
       n.pose = n.odom_pose;

@@ -247,7 +247,7 @@ std::string encode_descriptor(const mapping::PlaceDescriptor& d) {
   return out;
 }
 
-mapping::PlaceDescriptor decode_descriptor(const void* data, std::size_t size) {
+mapping::PlaceDescriptor decode_descriptor(const void* data, std::size_t size, bool with_cells) {
   const auto* p = static_cast<const unsigned char*>(data);
   if (size < 4) throw std::invalid_argument("descriptor blob too short");
   mapping::PlaceDescriptor d;
@@ -262,7 +262,7 @@ mapping::PlaceDescriptor decode_descriptor(const void* data, std::size_t size) {
     if (!std::isfinite(v)) throw std::invalid_argument("non-finite descriptor ring key");
     p += 4;
   }
-  d.cells.assign(p, p + cells);
+  if (with_cells) d.cells.assign(p, p + cells);
   return d;
 }
 

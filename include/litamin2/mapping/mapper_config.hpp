@@ -204,9 +204,10 @@ struct PoseGraphConfig {
   /// (docs/benchmarks.md, "10^6 keyframes"). 0 = no bound.
   int full_pass_max_segments = 20000;
   /// A full pass leaves a keyframe where it is when it would move it by less than this many
-  /// metres and full_pass_min_turn_deg: a settled map's keyframes are neither rewritten in
-  /// the store nor fused into their tiles again for a millimetre, so applying a pass costs what
-  /// it changes, not the map's size (1 cm: below the loops' own error, ~1.3 cm at p50 in the
+  /// metres and full_pass_min_turn_deg: a settled map's keyframes are not rewritten in the
+  /// store, queued for the tiles (which re-fuse only beyond map_tiles.move_threshold_m) or
+  /// published again for a millimetre, so applying a pass costs what it changes, not the map's
+  /// size (1 cm: below the loops' own error, ~1.3 cm at p50 in the
   /// fleet bench; at 10^5 keyframes it left 31 % of the moves undone at the same ATE,
   /// docs/benchmarks.md "Place search and full pass at any map size"). A keyframe left stays
   /// within the bound of the latest pass's solution: the next pass measures from where it

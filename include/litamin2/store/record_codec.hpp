@@ -58,7 +58,9 @@ std::vector<Distribution> decode_distributions(const void* data, std::size_t siz
                                                const RegularizerConfig& regularizer);
 
 std::string encode_descriptor(const mapping::PlaceDescriptor& descriptor);
-mapping::PlaceDescriptor decode_descriptor(const void* data, std::size_t size);
+/// `with_cells` false: the ring key only (the blob is checked whole either way).
+mapping::PlaceDescriptor decode_descriptor(const void* data, std::size_t size,
+                                           bool with_cells = true);
 
 /// Voxels with a non-positive count or non-finite sums are refused (std::invalid_argument).
 std::string encode_tile_voxels(const std::vector<mapping::MapTile::Voxel>& voxels);
