@@ -79,6 +79,9 @@ MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
   graph.read_range("full_pass_max_segments", g.full_pass_max_segments, 0, 100'000'000);
   graph.read_range("full_pass_min_shift", g.full_pass_min_shift, 0.0, 10.0);
   graph.read_range("full_pass_min_turn_deg", g.full_pass_min_turn_deg, 0.0, 10.0);
+  graph.read_range("yaw_drift_window", g.yaw_drift_window, 0.0, 1e7);
+  graph.read_range("yaw_drift_min_path", g.yaw_drift_min_path, 0.0, 1e7);
+  graph.read_range("yaw_drift_max_deg_per_100m", g.yaw_drift_max_deg_per_100m, 1e-6, 1e4);
   graph.read_range("iterative_min_free_poses", g.iterative_min_free_poses, 0, 100'000'000);
   graph.read_range("max_iterations", g.max_iterations, 1, 10000);
   graph.read_range("threads", g.threads, 1, 256);
@@ -161,6 +164,10 @@ std::string mapper_config_to_yaml(const MapperConfig& c) {
   out << YAML::Key << "full_pass_max_segments" << YAML::Value << c.graph.full_pass_max_segments;
   out << YAML::Key << "full_pass_min_shift" << YAML::Value << c.graph.full_pass_min_shift;
   out << YAML::Key << "full_pass_min_turn_deg" << YAML::Value << c.graph.full_pass_min_turn_deg;
+  out << YAML::Key << "yaw_drift_window" << YAML::Value << c.graph.yaw_drift_window;
+  out << YAML::Key << "yaw_drift_min_path" << YAML::Value << c.graph.yaw_drift_min_path;
+  out << YAML::Key << "yaw_drift_max_deg_per_100m" << YAML::Value
+      << c.graph.yaw_drift_max_deg_per_100m;
   out << YAML::Key << "iterative_min_free_poses" << YAML::Value << c.graph.iterative_min_free_poses;
   out << YAML::Key << "max_iterations" << YAML::Value << c.graph.max_iterations;
   out << YAML::Key << "threads" << YAML::Value << c.graph.threads;

@@ -158,6 +158,9 @@ PoseGraphEdge GraphOptimizer::odometry_edge(const KeyframeNode& a, const Keyfram
   PoseGraphEdge e;
   e.relative = a.odom_pose.inverse() * b.odom_pose;
   const double distance = e.relative.translation().norm();
+  if (drift_)
+    e.relative =
+        without_yaw_drift(e.relative, drift_->drift_per_m(b.stream), b.path_length - a.path_length);
   const double st =
       std::max(g.odometry_translation_sigma_min, g.odometry_translation_sigma_per_m * distance);
   const double sr =

@@ -21,13 +21,16 @@ struct Mapper::Impl {
         cache(distribution_cache ? std::move(distribution_cache)
                                  : std::make_unique<DistributionCache>()),
         detector(config),
-        optimizer(config),
+        drift(config.graph),
+        optimizer(config, &drift),
         merges(config.place) {}
 
   MapperConfig config;
   KeyframeGraph graph;
   std::unique_ptr<DistributionCache> cache;
   LoopDetector detector;
+  /// Each stream's odometry yaw drift, taken out of its odometry edges (yaw_drift.hpp).
+  YawDriftEstimator drift;
   GraphOptimizer optimizer;
   MergeConfirmation merges;
   GraphLoops loops;
@@ -40,18 +43,38 @@ struct Mapper::Impl {
   /// Per stream, the path length at its latest place search (search_spacing).
   std::vector<double> last_search;
 
-  /// Initial pose of a new keyframe: chained by odometry from its nearest present neighbour
-  /// in the same stream, else its odometry pose.
+  /// Initial pose of a new keyframe: chained by odometry (without the stream's yaw drift)
+  /// from its nearest present neighbour in the same stream, else its odometry pose.
   Eigen::Isometry3d initial_pose(const Keyframe& kf) const {
     const StreamGroups& groups = graph.groups();
     if (!groups.contains(kf.key.stream)) return kf.odom_pose;
+    const std::uint32_t stream = groups.index(kf.key.stream);
     const auto& chain = groups.at(kf.key.stream).nodes;
     auto next = chain.upper_bound(kf.key.id);
     const KeyframeNode* neighbour = nullptr;
     if (next != chain.begin()) neighbour = &graph.node(std::prev(next)->second);
     if (!neighbour && next != chain.end()) neighbour = &graph.node(next->second);
     if (!neighbour) return kf.odom_pose;
-    return neighbour->pose * neighbour->odom_pose.inverse() * kf.odom_pose;
+    const Eigen::Isometry3d relative = neighbour->odom_pose.inverse() * kf.odom_pose;
+    const double distance = relative.translation().norm();
+    return neighbour->pose *
+           without_yaw_drift(relative, drift.drift_per_m(stream),
+                             kf.key.id > neighbour->key.id ? distance : -distance);
+  }
+
+  /// The loops from `first` on were just checked: their ends are loop ends of their streams
+  /// from now on, and those streams' drift is estimated again.
+  void estimate_drift_from(std::size_t first) {
+    if (!drift.enabled()) return;
+    std::vector<std::uint32_t> streams;
+    for (std::size_t i = first; i < loops.size(); ++i)
+      for (const std::uint32_t n : {loops.nodes[i].first, loops.nodes[i].second}) {
+        drift.add_anchor(graph, n);
+        streams.push_back(graph.node(n).stream);
+      }
+    std::sort(streams.begin(), streams.end());
+    streams.erase(std::unique(streams.begin(), streams.end()), streams.end());
+    for (const std::uint32_t s : streams) drift.update(graph, s);
   }
 
   /// Adds a verified loop; one between two groups goes through the merge confirmation
@@ -197,8 +220,9 @@ OptimizeSummary Mapper::optimize() {
   const double cpu_start = thread_cpu_seconds();
   const std::size_t before = m.loops.size();
   const LocalOptimization local = m.optimizer.optimize_local(m.graph, m.loops, m.stats);
-  m.checked_since_full_pass +=
-      m.loops.size() - (before - static_cast<std::size_t>(m.loops_since_optimize));
+  const std::size_t first_new = before - static_cast<std::size_t>(m.loops_since_optimize);
+  m.checked_since_full_pass += m.loops.size() - first_new;
+  m.estimate_drift_from(first_new);
   m.loops_since_optimize = 0;
   ++m.stats.optimizations;
   summary.ran = local.ran;
@@ -244,7 +268,10 @@ void Mapper::apply_full_pass(const FullPassProblem& problem) {
   const PoseGraphConfig& g = impl_->config.graph;
   impl_->stats.full_pass_keyframes_moved += GraphOptimizer::apply_full_pass(
       problem, impl_->graph, g.full_pass_min_shift, g.full_pass_min_turn_deg * M_PI / 180.0);
-  if (problem.result.usable) ++impl_->stats.full_passes;
+  if (problem.result.usable) {
+    ++impl_->stats.full_passes;
+    impl_->drift.update_all(impl_->graph);
+  }
   if (problem.result.diverged) ++impl_->stats.diverged;
 }
 
@@ -289,6 +316,7 @@ void Mapper::restore(std::vector<KeyframeNode> nodes, const std::vector<LoopEdge
   }
   m.loops.check_all(m.graph);
   m.checked_since_full_pass = m.loops.size();
+  m.estimate_drift_from(0);
   std::vector<MergeCandidate> pending;
   for (const LoopEdge& edge : pending_merges) {
     const std::int64_t from = m.graph.find(edge.from), to = m.graph.find(edge.to);
@@ -373,11 +401,18 @@ const std::vector<LoopEdge>& Mapper::loops() const {
 MapperStats Mapper::stats() const {
   MapperStats s = impl_->stats;
   s.streams = impl_->graph.groups().streams().size();
+  s.yaw_drift_estimates = impl_->drift.estimates();
+  s.yaw_drift_rejected = impl_->drift.rejected();
   return s;
 }
 
 MapperCpu Mapper::cpu() const {
   return impl_->cpu;
+}
+
+double Mapper::yaw_drift_per_m(const std::string& stream) const {
+  const StreamGroups& groups = impl_->graph.groups();
+  return groups.contains(stream) ? impl_->drift.drift_per_m(groups.index(stream)) : 0.0;
 }
 
 const MapperConfig& Mapper::config() const {

@@ -43,6 +43,10 @@ void validate(const MapperConfig& c) {
           "pose_graph.full_pass_min_shift and full_pass_min_turn_deg must be >= 0");
   require(c.graph.full_pass_max_segments >= 0,
           "pose_graph.full_pass_max_segments must be >= 0 (0 = no bound)");
+  require(c.graph.yaw_drift_window >= 0.0 && c.graph.yaw_drift_min_path >= 0.0,
+          "pose_graph.yaw_drift_window and yaw_drift_min_path must be >= 0 (window 0 = off)");
+  require(c.graph.yaw_drift_max_deg_per_100m > 0.0,
+          "pose_graph.yaw_drift_max_deg_per_100m must be positive");
   require(c.graph.iterative_min_free_poses >= 0,
           "pose_graph.iterative_min_free_poses must be >= 0 (0 = never)");
 }

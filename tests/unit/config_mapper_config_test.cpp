@@ -29,6 +29,9 @@ TEST(MappingConfig, EmittedYamlReadsBack) {
   config.graph.threads = 2;
   config.graph.odometry_covariance = OdometryCovariance::kDistance;
   config.graph.tracker_covariance_scale = 4.0;
+  config.graph.yaw_drift_window = 500.0;
+  config.graph.yaw_drift_min_path = 50.0;
+  config.graph.yaw_drift_max_deg_per_100m = 0.75;
   const std::string yaml = mapper_config_to_yaml(config);
   EXPECT_EQ(mapper_config_to_yaml(mapper_config_from_yaml(YAML::Load(yaml))), yaml);
 }
@@ -71,6 +74,13 @@ TEST(MappingConfig, BadKeysAndValuesAreNamed) {
             std::string::npos);
   EXPECT_NE(message("pose_graph: {odometry_covariance: hessian}")
                 .find("pose_graph.odometry_covariance: 'hessian' is not one of: distance, tracker"),
+            std::string::npos);
+  EXPECT_NE(message("pose_graph: {yaw_drift_window: -1}").find("pose_graph.yaw_drift_window"),
+            std::string::npos);
+  EXPECT_NE(message("pose_graph: {yaw_drift_min_path: -5}").find("pose_graph.yaw_drift_min_path"),
+            std::string::npos);
+  EXPECT_NE(message("pose_graph: {yaw_drift_max_deg_per_100m: 0}")
+                .find("pose_graph.yaw_drift_max_deg_per_100m"),
             std::string::npos);
   EXPECT_NE(message("pose_graph: {tracker_covariance_scale: 0}")
                 .find("pose_graph.tracker_covariance_scale"),

@@ -77,6 +77,7 @@ struct Options {
   int iterative_min_free_poses = mapping::PoseGraphConfig{}.iterative_min_free_poses;
   double full_pass_min_shift = mapping::PoseGraphConfig{}.full_pass_min_shift;
   double full_pass_min_turn_deg = mapping::PoseGraphConfig{}.full_pass_min_turn_deg;
+  double yaw_drift_window = mapping::PoseGraphConfig{}.yaw_drift_window;
   int tile_segment_keyframes = 10;
   int merge_confirmations = 2;
   std::size_t cache_mb = 512;
@@ -204,6 +205,9 @@ int main(int argc, char** argv) {
   app.add_option("--full-pass-min-shift", o.full_pass_min_shift,
                  "pose_graph.full_pass_min_shift, m")
       ->check(CLI::Range(0.0, 10.0));
+  app.add_option("--yaw-drift-window", o.yaw_drift_window,
+                 "pose_graph.yaw_drift_window, metres (0: the odometry edges keep the drift)")
+      ->check(CLI::Range(0.0, 1e7));
   app.add_option("--full-pass-min-turn-deg", o.full_pass_min_turn_deg,
                  "pose_graph.full_pass_min_turn_deg")
       ->check(CLI::Range(0.0, 10.0));
@@ -252,6 +256,7 @@ int main(int argc, char** argv) {
   mapper.graph.iterative_min_free_poses = o.iterative_min_free_poses;
   mapper.graph.full_pass_min_shift = o.full_pass_min_shift;
   mapper.graph.full_pass_min_turn_deg = o.full_pass_min_turn_deg;
+  mapper.graph.yaw_drift_window = o.yaw_drift_window;
   mapper.place.merge_confirmations = o.merge_confirmations;
   mapper.graph.odometry_covariance = mapping::OdometryCovariance::kDistance;
   CoreOptions core_options;
@@ -553,6 +558,18 @@ int main(int argc, char** argv) {
   }
   const double ate = in_map ? std::sqrt(sum_sq / in_map) : 0.0;
 
+  // Each vehicle's odometry yaw drift as the reopened mapper estimates it from its loops,
+  // against the bias it was driven with (the drives' constructors draw it from the seed).
+  std::vector<double> drift_error, drift_true;  // deg per 100 m, over the vehicles in the map
+  for (int v = 0; v < o.vehicles; ++v) {
+    if (!merged.count(stream_name(v))) continue;
+    const double to_deg_per_100m = 180.0 / M_PI * 100.0;
+    const double bias =
+        FleetVehicleDrive(drive_config, o.seed * 7919u + static_cast<unsigned>(v)).yaw_bias_per_m();
+    drift_true.push_back(std::abs(bias) * to_deg_per_100m);
+    drift_error.push_back(std::abs(m.yaw_drift_per_m(stream_name(v)) - bias) * to_deg_per_100m);
+  }
+
   // Loops against the ground truth: a loop is wrong when its relative pose is more than
   // 1 m or 2 degrees from the true one. The loops that joined two groups of streams (in the
   // order the store recovers them, as Mapper::restore joins them) are counted apart.
@@ -644,6 +661,7 @@ int main(int argc, char** argv) {
       {"full_passes", full_passes},
       {"full_pass_min_shift", o.full_pass_min_shift},
       {"full_pass_min_turn_deg", o.full_pass_min_turn_deg},
+      {"yaw_drift_window", o.yaw_drift_window},
       {"full_pass_keyframes_moved", final_stats.full_pass_keyframes_moved},
       {"mapping_cpu_ms_per_keyframe", windows},
       {"mapping_cpu_ms_per_keyframe_10k_windows", windows_10k},
@@ -673,6 +691,11 @@ int main(int argc, char** argv) {
       {"descriptor_searches", final_stats.descriptor_searches},
       {"searches_over_budget", final_stats.searches_over_budget},
       {"ate_m", ate},
+      {"yaw_drift_estimates", final_stats.yaw_drift_estimates},
+      {"yaw_drift_rejected", final_stats.yaw_drift_rejected},
+      {"yaw_drift_true_deg_per_100m_p50", percentile(drift_true, 0.5)},
+      {"yaw_drift_error_deg_per_100m_p50", percentile(drift_error, 0.5)},
+      {"yaw_drift_error_deg_per_100m_max", percentile(drift_error, 1.0)},
       {"keyframes_in_map_frame", in_map},
       {"vehicles_in_map_frame", merged.size()},
       {"tiles", tiles},

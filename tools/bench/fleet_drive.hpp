@@ -32,6 +32,8 @@ class FleetVehicleDrive {
   const Eigen::Isometry3d& truth() const { return truth_; }
   /// Sensor pose in the vehicle's odometry frame (its first true pose).
   const Eigen::Isometry3d& odometry() const { return odometry_; }
+  /// The odometry's yaw bias, radians a metre (drawn at construction from the seed).
+  double yaw_bias_per_m() const { return yaw_bias_ / config_.spacing; }
 
  private:
   Eigen::Isometry3d pose_at() const;

@@ -240,9 +240,11 @@ int run(const Options& options) {
       std::printf(
           "loop closure: %zu keyframes, %zu candidates, %zu loops verified, %zu rejected, "
           "%zu optimisations, %.1f s in mapping (CPU: verification %.1f s, optimisation %.1f "
-          "s)\n",
+          "s), odometry yaw drift %.3f deg/100 m (%zu estimates)\n",
           ms.keyframes, ms.candidates, ms.verified, ms.rejected, ms.optimizations,
-          loop_closure->milliseconds() / 1000.0, cpu.verification_s, cpu.optimize_s);
+          loop_closure->milliseconds() / 1000.0, cpu.verification_s, cpu.optimize_s,
+          loop_closure->mapper().yaw_drift_per_m(mapping::OfflineSlam::kStream) * 18000.0 / M_PI,
+          ms.yaw_drift_estimates);
       print_accuracy("odometry only:     ", odometry_acc);
       print_accuracy("with loop closure: ", acc);
     } else {

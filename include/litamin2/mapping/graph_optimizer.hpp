@@ -24,6 +24,7 @@
 #include "litamin2/mapping/mapper_config.hpp"
 #include "litamin2/mapping/mapper_stats.hpp"
 #include "litamin2/mapping/pose_graph.hpp"
+#include "litamin2/mapping/yaw_drift.hpp"
 
 #include <cstdint>
 #include <unordered_map>
@@ -99,8 +100,10 @@ std::size_t full_pass_segment_keyframes(const PoseGraphConfig& config, std::size
 
 class GraphOptimizer {
  public:
-  /// `config` must outlive the optimizer.
-  explicit GraphOptimizer(const MapperConfig& config) : config_(config) {}
+  /// `config` must outlive the optimizer, and so must `drift` if given: the odometry edges
+  /// then take each stream's yaw drift out (yaw_drift.hpp).
+  explicit GraphOptimizer(const MapperConfig& config, const YawDriftEstimator* drift = nullptr)
+      : config_(config), drift_(drift) {}
 
   /// The local optimisation of the unchecked loops (see the file comment); drops the
   /// inconsistent ones from `loops` and checks the others.
@@ -118,7 +121,8 @@ class GraphOptimizer {
   static std::size_t apply_full_pass(const FullPassProblem& problem, KeyframeGraph& graph,
                                      double min_shift = 0.0, double min_turn = 0.0);
 
-  /// The odometry edge from keyframe a to the next present keyframe b of its stream: its
+  /// The odometry edge from keyframe a to the next present keyframe b of its stream, without
+  /// the stream's yaw drift estimate (YawDriftEstimator); its
   /// uncertainty by distance, or from b's tracker covariance (PoseGraphConfig::
   /// odometry_covariance). b's covariance is relative to a only when b directly follows a (no
   /// keyframe missing in between); otherwise, and when b has none, by distance.
@@ -134,6 +138,7 @@ class GraphOptimizer {
 
  private:
   const MapperConfig& config_;
+  const YawDriftEstimator* drift_ = nullptr;
 };
 
 }  // namespace litamin2::mapping

@@ -130,6 +130,9 @@ class Mapper {
   std::uint64_t pending_merges_version() const;
   MapperStats stats() const;
   MapperCpu cpu() const;
+  /// The stream's odometry yaw drift estimate (yaw_drift.hpp), radians a metre; 0 for an
+  /// unknown stream, before an estimate, or with PoseGraphConfig::yaw_drift_window 0.
+  double yaw_drift_per_m(const std::string& stream) const;
   const MapperConfig& config() const;
 
   /// Distributions of the global map in the frame of the first stream, built from every

@@ -38,6 +38,10 @@ struct MapperStats {
   /// Local optimisations and full passes whose solution ran off (pose_graph.hpp,
   /// within_reach): refused.
   std::size_t diverged = 0;
+  /// Odometry yaw drift estimates taken, and rejected as beyond
+  /// PoseGraphConfig::yaw_drift_max_deg_per_100m (yaw_drift.hpp).
+  std::size_t yaw_drift_estimates = 0;
+  std::size_t yaw_drift_rejected = 0;
 };
 
 /// CPU time (of the calling thread) spent in the mapper's stages since construction, seconds.
