@@ -24,6 +24,12 @@ std::uint32_t KeyframeGraph::add(KeyframeNode node) {
   return index;
 }
 
+void KeyframeGraph::reserve(std::size_t nodes) {
+  nodes_.reserve(nodes);
+  changed_.reserve(nodes);
+  changed_list_.reserve(nodes);
+}
+
 void KeyframeGraph::update_path_lengths(std::uint32_t stream, std::uint64_t from_id) {
   // From the keyframe before the new one to the end: the new keyframe's own length, and the
   // lengths after it when it arrived late (one step at the end in the usual case).

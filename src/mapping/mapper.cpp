@@ -295,6 +295,9 @@ void Mapper::restore(std::vector<KeyframeNode> nodes, const std::vector<LoopEdge
                      const std::vector<LoopEdge>& pending_merges) {
   Impl& m = *impl_;
   if (m.graph.size() != 0) throw std::logic_error("Mapper::restore: the mapper is not empty");
+  m.graph.reserve(nodes.size());
+  m.loops.edges.reserve(loops.size());
+  m.loops.nodes.reserve(loops.size());
   for (KeyframeNode& node : nodes) {
     if (m.graph.find(node.key) >= 0) {
       ++m.stats.duplicates;

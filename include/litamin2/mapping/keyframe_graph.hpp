@@ -48,6 +48,8 @@ class KeyframeGraph {
   /// Adds a node (its key not present yet), keeping the stream's path lengths; returns its
   /// index. The node's pose is set by the caller beforehand.
   std::uint32_t add(KeyframeNode node);
+  /// Room for `nodes` nodes in all (a restore of a known size).
+  void reserve(std::size_t nodes);
 
   /// Moves a node (updates the spatial grid and marks it changed). The rotation is
   /// re-orthonormalised (core/so3.hpp orthonormalized): the full pass and the merges correct
