@@ -78,6 +78,7 @@ struct Options {
   double full_pass_min_shift = mapping::PoseGraphConfig{}.full_pass_min_shift;
   double full_pass_min_turn_deg = mapping::PoseGraphConfig{}.full_pass_min_turn_deg;
   double yaw_drift_window = mapping::PoseGraphConfig{}.yaw_drift_window;
+  double loop_rotation_sigma_deg = mapping::LoopVerificationConfig{}.rotation_sigma_deg;
   int tile_segment_keyframes = 10;
   int merge_confirmations = 2;
   std::size_t cache_mb = 512;
@@ -208,6 +209,9 @@ int main(int argc, char** argv) {
   app.add_option("--yaw-drift-window", o.yaw_drift_window,
                  "pose_graph.yaw_drift_window, metres (0: the odometry edges keep the drift)")
       ->check(CLI::Range(0.0, 1e7));
+  app.add_option("--loop-rotation-sigma-deg", o.loop_rotation_sigma_deg,
+                 "verification.rotation_sigma_deg: the loop edges' rotation standard deviation")
+      ->check(CLI::Range(1e-4, 90.0));
   app.add_option("--full-pass-min-turn-deg", o.full_pass_min_turn_deg,
                  "pose_graph.full_pass_min_turn_deg")
       ->check(CLI::Range(0.0, 10.0));
@@ -257,6 +261,7 @@ int main(int argc, char** argv) {
   mapper.graph.full_pass_min_shift = o.full_pass_min_shift;
   mapper.graph.full_pass_min_turn_deg = o.full_pass_min_turn_deg;
   mapper.graph.yaw_drift_window = o.yaw_drift_window;
+  mapper.verification.rotation_sigma_deg = o.loop_rotation_sigma_deg;
   mapper.place.merge_confirmations = o.merge_confirmations;
   mapper.graph.odometry_covariance = mapping::OdometryCovariance::kDistance;
   CoreOptions core_options;
@@ -674,6 +679,7 @@ int main(int argc, char** argv) {
       {"full_pass_min_shift", o.full_pass_min_shift},
       {"full_pass_min_turn_deg", o.full_pass_min_turn_deg},
       {"yaw_drift_window", o.yaw_drift_window},
+      {"loop_rotation_sigma_deg", o.loop_rotation_sigma_deg},
       {"full_pass_keyframes_moved", final_stats.full_pass_keyframes_moved},
       {"mapping_cpu_ms_per_keyframe", windows},
       {"mapping_cpu_ms_per_keyframe_10k_windows", windows_10k},
