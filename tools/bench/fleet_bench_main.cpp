@@ -91,6 +91,11 @@ struct Options {
   std::string reopen_only;
 };
 
+/// Vehicle v's drive seed: the generator's, and the drift check's that draws the same bias.
+unsigned drive_seed(unsigned seed, int v) {
+  return seed * 7919u + static_cast<unsigned>(v);
+}
+
 std::string stream_name(int v) {
   char buf[32];
   std::snprintf(buf, sizeof(buf), "vehicle_%03d", v);
@@ -338,7 +343,7 @@ int main(int argc, char** argv) {
     std::vector<FleetVehicleDrive> drives;
     std::vector<std::mt19937> rngs;
     for (int v = 0; v < o.vehicles; ++v) {
-      drives.emplace_back(drive_config, o.seed * 7919u + static_cast<unsigned>(v));
+      drives.emplace_back(drive_config, drive_seed(o.seed, v));
       rngs.emplace_back(o.seed * 104729u + static_cast<unsigned>(v));
     }
     Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
@@ -569,8 +574,7 @@ int main(int argc, char** argv) {
   for (int v = 0; v < o.vehicles; ++v) {
     if (!merged.count(stream_name(v))) continue;
     const double to_deg_per_100m = 180.0 / M_PI * 100.0;
-    const double bias =
-        FleetVehicleDrive(drive_config, o.seed * 7919u + static_cast<unsigned>(v)).yaw_bias_per_m();
+    const double bias = FleetVehicleDrive(drive_config, drive_seed(o.seed, v)).yaw_bias_per_m();
     drift_true.push_back(std::abs(bias) * to_deg_per_100m);
     drift_error.push_back(std::abs(m.yaw_drift_per_m(stream_name(v)) - bias) * to_deg_per_100m);
   }
