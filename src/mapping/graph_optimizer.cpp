@@ -311,12 +311,22 @@ LocalOptimization GraphOptimizer::optimize_local(KeyframeGraph& graph, GraphLoop
     std::vector<std::uint32_t> used_loops;
     std::vector<Eigen::Isometry3d> start;
   };
+  // The first keyframe of a group's anchor stream holds the group's frame (the map frame is
+  // the first vehicle's first pose): a local solve that reaches it keeps it where it is, as
+  // the full pass keeps its segment. Freed, it would drift with every solve that reaches the
+  // anchor stream's start while other keyframes of the region hold the gauge.
+  auto holds_frame = [&](std::uint32_t n) {
+    const KeyframeNode& node = graph.node(n);
+    if (groups.anchor_of(node.stream) != node.stream) return false;
+    const auto& chain = groups.at(node.stream).nodes;
+    return !chain.empty() && chain.begin()->second == n;
+  };
   auto build = [&](NodeSet& free_set) {
     Region r;
     LocalProblem& problem = r.problem;
     std::vector<PoseGraphEdge>& edges = r.edges;
     const std::vector<std::uint32_t>& free_nodes = free_set.sorted();
-    for (std::uint32_t n : free_nodes) problem.add(n, false);
+    for (std::uint32_t n : free_nodes) problem.add(n, holds_frame(n));
     for (std::uint32_t n : free_nodes) {
       const KeyframeNode& node = graph.node(n);
       const auto& chain = groups.at(node.stream).nodes;

@@ -182,3 +182,40 @@ TEST(MappingLocalOptimization, BoundedSolvesHoldTheRestFixedAndEndCloseToTheFull
       local_gap, unbounded_gap, full_pass_gap, bounded_solves, widened_solves,
       bounded.loops().size(), full.loops().size(), largest_unbounded);
 }
+
+// The map frame is the first stream's first pose: a local solve whose region reaches that
+// keyframe while other keyframes hold the region (here: a loop back to the start, its newer
+// end's stretch bounded by local_max_keyframes, its older end freed) keeps it bit for bit, and
+// so does the full pass; the rest still ends close to the full optimisation.
+TEST(MappingLocalOptimization, TheFirstKeyframeHoldsTheMapFrame) {
+  const auto keyframes = drive("a", out_and_back(), 0.05, 1);
+  MapperConfig config;
+  config.place.min_travel_gap = 20.0;
+  config.graph.local_hold_loops = 0;     // the older end, near the start, is freed
+  config.graph.local_max_keyframes = 5;  // the newer end's stretch is held beyond 5
+  MapperConfig keyframe_level = config;
+  keyframe_level.graph.segment_keyframes = 1;
+  Mapper local(config), full(keyframe_level);
+  const KeyframeKey first{"a", 0};
+  int solves_near_start = 0;
+  for (const auto& kf : keyframes) {
+    std::vector<LoopEdge> new_loops;
+    local.add_keyframe(kf, &new_loops);
+    const OptimizeSummary s = local.optimize();
+    for (const LoopEdge& loop : new_loops)
+      if (loop.from.id <= 3 && s.keyframes > s.free_keyframes + 1) ++solves_near_start;
+    ASSERT_TRUE(local.node(first)->pose.isApprox(keyframes[0].odom_pose, 0.0))
+        << "the map frame's keyframe moved in a local solve at keyframe " << kf.key.id;
+    full.add_keyframe(kf);
+    full.optimize();
+  }
+  ASSERT_GT(solves_near_start, 0) << "no solve reached the start while other keyframes held";
+  local.optimize_full();
+  full.optimize_full();
+  EXPECT_TRUE(local.node(first)->pose.isApprox(keyframes[0].odom_pose, 0.0));
+  EXPECT_TRUE(full.node(first)->pose.isApprox(keyframes[0].odom_pose, 0.0));
+  // Tolerance as in EndsCloseToTheFullOptimisation (the drive drifts by 1.0 m without loops).
+  const double gap = largest_difference(local, full);
+  EXPECT_LT(gap, 0.15);
+  std::printf("local vs full %.3f m; %d solves near the start\n", gap, solves_near_start);
+}

@@ -18,6 +18,9 @@
 ///   loop edges between segments; one fixed segment per group. The problem is a copy
 ///   (FullPassProblem) solved without the graph, then applied: each keyframe moves with its
 ///   segment's correction, keyframes added meanwhile with their stream's last segment's.
+///
+/// In both, the first keyframe of each group's anchor stream holds the group's frame (for the
+/// map frame: the first vehicle's first pose) and never moves.
 
 #include "litamin2/mapping/keyframe_graph.hpp"
 #include "litamin2/mapping/loop_edge.hpp"
