@@ -79,6 +79,7 @@ struct Options {
   double full_pass_min_turn_deg = mapping::PoseGraphConfig{}.full_pass_min_turn_deg;
   double yaw_drift_window = mapping::PoseGraphConfig{}.yaw_drift_window;
   double loop_rotation_sigma_deg = mapping::LoopVerificationConfig{}.rotation_sigma_deg;
+  double loop_consistency_sigmas = mapping::PoseGraphConfig{}.loop_consistency_sigmas;
   int tile_segment_keyframes = 10;
   int merge_confirmations = 2;
   std::size_t cache_mb = 512;
@@ -128,6 +129,35 @@ double file_mb(const std::string& path) {
     if (!ec) total += static_cast<double>(size);
   }
   return total / (1024.0 * 1024.0);
+}
+
+/// RMS translation error after the best rotation about z and translation of the estimate
+/// onto the truth (least squares, 2D Umeyama without scale; z follows the mean): the map's
+/// shape error, apart from where and how it is turned as a whole. A diagnostic beside the
+/// issue's ATE, which allows no alignment beyond the first vehicle's first pose.
+double ate_after_yaw_alignment(const std::vector<Eigen::Vector3d>& estimate,
+                               const std::vector<Eigen::Vector3d>& truth) {
+  const std::size_t n = estimate.size();
+  if (n == 0) return 0.0;
+  Eigen::Vector3d mean_e = Eigen::Vector3d::Zero(), mean_t = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    mean_e += estimate[i];
+    mean_t += truth[i];
+  }
+  mean_e /= static_cast<double>(n);
+  mean_t /= static_cast<double>(n);
+  double dot = 0.0, cross = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d e = estimate[i] - mean_e, t = truth[i] - mean_t;
+    dot += e.x() * t.x() + e.y() * t.y();
+    cross += e.x() * t.y() - e.y() * t.x();
+  }
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(std::atan2(cross, dot), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  double sum_sq = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+    sum_sq += (turn * (estimate[i] - mean_e) + mean_t - truth[i]).squaredNorm();
+  return std::sqrt(sum_sq / static_cast<double>(n));
 }
 
 double percentile(std::vector<double> v, double p) {
@@ -217,6 +247,10 @@ int main(int argc, char** argv) {
   app.add_option("--loop-rotation-sigma-deg", o.loop_rotation_sigma_deg,
                  "verification.rotation_sigma_deg: the loop edges' rotation standard deviation")
       ->check(CLI::Range(1e-4, 90.0));
+  app.add_option("--loop-consistency-sigmas", o.loop_consistency_sigmas,
+                 "pose_graph.loop_consistency_sigmas: a new loop the local solve leaves further "
+                 "off than this is dropped")
+      ->check(CLI::Range(0.5, 1000.0));
   app.add_option("--full-pass-min-turn-deg", o.full_pass_min_turn_deg,
                  "pose_graph.full_pass_min_turn_deg")
       ->check(CLI::Range(0.0, 10.0));
@@ -267,6 +301,7 @@ int main(int argc, char** argv) {
   mapper.graph.full_pass_min_turn_deg = o.full_pass_min_turn_deg;
   mapper.graph.yaw_drift_window = o.yaw_drift_window;
   mapper.verification.rotation_sigma_deg = o.loop_rotation_sigma_deg;
+  mapper.graph.loop_consistency_sigmas = o.loop_consistency_sigmas;
   mapper.place.merge_confirmations = o.merge_confirmations;
   mapper.graph.odometry_covariance = mapping::OdometryCovariance::kDistance;
   CoreOptions core_options;
@@ -560,13 +595,34 @@ int main(int argc, char** argv) {
   double sum_sq = 0.0;
   std::size_t in_map = 0;
   std::set<std::string> merged;
+  std::vector<Eigen::Vector3d> estimated_positions, true_positions;
   for (const mapping::KeyframePose& p : m.poses()) {
     if (p.frame != anchor) continue;
     sum_sq += (p.pose.translation() - truth(p.key).translation()).squaredNorm();
     ++in_map;
     merged.insert(p.key.stream);
+    estimated_positions.push_back(p.pose.translation());
+    true_positions.push_back(truth(p.key).translation());
   }
   const double ate = in_map ? std::sqrt(sum_sq / in_map) : 0.0;
+  const double ate_shape = ate_after_yaw_alignment(estimated_positions, true_positions);
+  estimated_positions = {};
+  true_positions = {};
+  // The keyframe that holds the map frame, vehicle 0's first (its true pose is the identity):
+  // its own error shows whether the frame held, and the ATE aligned by it alone is the issue's
+  // "no alignment beyond the first vehicle's first pose" whether or not it did.
+  double anchor_error_m = 0.0, anchor_error_deg = 0.0, ate_first_pose_aligned = 0.0;
+  if (const auto first = m.pose(KeyframeKey{stream_name(0), 0}); first && first->frame == anchor) {
+    const Eigen::Isometry3d align = truth(first->key) * first->pose.inverse();
+    anchor_error_m = align.translation().norm();
+    anchor_error_deg = Eigen::AngleAxisd(align.linear()).angle() * 180.0 / M_PI;
+    double aligned_sq = 0.0;
+    for (const mapping::KeyframePose& p : m.poses()) {
+      if (p.frame != anchor) continue;
+      aligned_sq += ((align * p.pose).translation() - truth(p.key).translation()).squaredNorm();
+    }
+    ate_first_pose_aligned = in_map ? std::sqrt(aligned_sq / in_map) : 0.0;
+  }
 
   // Each vehicle's odometry yaw drift as the reopened mapper estimates it from its loops,
   // against the bias it was driven with (the drives' constructors draw it from the seed).
@@ -684,6 +740,7 @@ int main(int argc, char** argv) {
       {"full_pass_min_turn_deg", o.full_pass_min_turn_deg},
       {"yaw_drift_window", o.yaw_drift_window},
       {"loop_rotation_sigma_deg", o.loop_rotation_sigma_deg},
+      {"loop_consistency_sigmas", o.loop_consistency_sigmas},
       {"full_pass_keyframes_moved", final_stats.full_pass_keyframes_moved},
       {"mapping_cpu_ms_per_keyframe", windows},
       {"mapping_cpu_ms_per_keyframe_10k_windows", windows_10k},
@@ -697,6 +754,7 @@ int main(int argc, char** argv) {
       {"restart_s", restart.restart_s},
       {"restart_identical", restart_identical},
       {"wrong_loops", wrong_loops},
+      {"loops_dropped_inconsistent", final_stats.inconsistent},
       {"worst_loop_error_m", worst_loop_m},
       {"loop_error_m_p50", percentile(loop_error_m, 0.5)},
       {"loop_error_m_p95", percentile(loop_error_m, 0.95)},
@@ -715,6 +773,10 @@ int main(int argc, char** argv) {
       {"descriptor_searches", final_stats.descriptor_searches},
       {"searches_over_budget", final_stats.searches_over_budget},
       {"ate_m", ate},
+      {"ate_first_pose_aligned_m", ate_first_pose_aligned},
+      {"anchor_keyframe_error_m", anchor_error_m},
+      {"anchor_keyframe_error_deg", anchor_error_deg},
+      {"ate_after_yaw_alignment_m", ate_shape},
       {"yaw_drift_estimates", final_stats.yaw_drift_estimates},
       {"yaw_drift_rejected", final_stats.yaw_drift_rejected},
       {"yaw_drift_true_deg_per_100m_p50", percentile(drift_true, 0.5)},
