@@ -80,6 +80,7 @@ struct Options {
   double yaw_drift_window = mapping::PoseGraphConfig{}.yaw_drift_window;
   double loop_rotation_sigma_deg = mapping::LoopVerificationConfig{}.rotation_sigma_deg;
   double loop_consistency_sigmas = mapping::PoseGraphConfig{}.loop_consistency_sigmas;
+  double loop_loss_scale = mapping::PoseGraphConfig{}.loop_loss_scale;
   int tile_segment_keyframes = 10;
   int merge_confirmations = 2;
   std::size_t cache_mb = 512;
@@ -251,6 +252,9 @@ int main(int argc, char** argv) {
                  "pose_graph.loop_consistency_sigmas: a new loop the local solve leaves further "
                  "off than this is dropped")
       ->check(CLI::Range(0.5, 1000.0));
+  app.add_option("--loop-loss-scale", o.loop_loss_scale,
+                 "pose_graph.loop_loss_scale: the Cauchy scale of checked loop edges, sigmas")
+      ->check(CLI::Range(0.01, 1000.0));
   app.add_option("--full-pass-min-turn-deg", o.full_pass_min_turn_deg,
                  "pose_graph.full_pass_min_turn_deg")
       ->check(CLI::Range(0.0, 10.0));
@@ -302,6 +306,7 @@ int main(int argc, char** argv) {
   mapper.graph.yaw_drift_window = o.yaw_drift_window;
   mapper.verification.rotation_sigma_deg = o.loop_rotation_sigma_deg;
   mapper.graph.loop_consistency_sigmas = o.loop_consistency_sigmas;
+  mapper.graph.loop_loss_scale = o.loop_loss_scale;
   mapper.place.merge_confirmations = o.merge_confirmations;
   mapper.graph.odometry_covariance = mapping::OdometryCovariance::kDistance;
   CoreOptions core_options;
@@ -741,6 +746,7 @@ int main(int argc, char** argv) {
       {"yaw_drift_window", o.yaw_drift_window},
       {"loop_rotation_sigma_deg", o.loop_rotation_sigma_deg},
       {"loop_consistency_sigmas", o.loop_consistency_sigmas},
+      {"loop_loss_scale", o.loop_loss_scale},
       {"full_pass_keyframes_moved", final_stats.full_pass_keyframes_moved},
       {"mapping_cpu_ms_per_keyframe", windows},
       {"mapping_cpu_ms_per_keyframe_10k_windows", windows_10k},

@@ -152,8 +152,12 @@ struct PoseGraphConfig {
   /// first optimised without it (the drift it corrects can be hundreds of standard deviations,
   /// which the loss would ignore), then checked: if the graph cannot accommodate it within
   /// loop_consistency_sigmas, it is dropped; else it keeps the robust loss from then on.
-  double loop_loss_scale = 1.0;
-  double loop_consistency_sigmas = 3.0;
+  /// Both are wide (10 and 12) because where passes over one place disagree by metres (a
+  /// fleet's early drift), the loops between them are what joins them: at 1 and 3 they were
+  /// dropped or given almost no weight, and the passes stayed apart (docs/benchmarks.md, "The
+  /// map frame's keyframe held, and what the ATE is made of").
+  double loop_loss_scale = 10.0;
+  double loop_consistency_sigmas = 12.0;
   /// Standard deviation of a prior that keeps every keyframe level with the frame of its
   /// group's first keyframe (roll and pitch), degrees; 0 = off. For ground vehicles whose
   /// roads tilt less than this from where they started: it bounds the tilt drift that loops
