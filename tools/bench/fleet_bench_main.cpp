@@ -597,22 +597,24 @@ int main(int argc, char** argv) {
   // ATE of every keyframe in the map frame (vehicle 0's odometry frame = its first pose).
   const mapping::Mapper& m = reopened.mapper();
   const std::string anchor = m.map_anchor();
-  double sum_sq = 0.0;
-  std::size_t in_map = 0;
   std::set<std::string> merged;
   std::vector<Eigen::Vector3d> estimated_positions, true_positions;
   for (const mapping::KeyframePose& p : m.poses()) {
     if (p.frame != anchor) continue;
-    sum_sq += (p.pose.translation() - truth(p.key).translation()).squaredNorm();
-    ++in_map;
     merged.insert(p.key.stream);
     estimated_positions.push_back(p.pose.translation());
     true_positions.push_back(truth(p.key).translation());
   }
-  const double ate = in_map ? std::sqrt(sum_sq / in_map) : 0.0;
+  const std::size_t in_map = estimated_positions.size();
+  // RMS of the estimated positions, moved by `align`, against the truth.
+  auto rms_error = [&](const Eigen::Isometry3d& align) {
+    double sum_sq = 0.0;
+    for (std::size_t i = 0; i < in_map; ++i)
+      sum_sq += (align * estimated_positions[i] - true_positions[i]).squaredNorm();
+    return in_map ? std::sqrt(sum_sq / static_cast<double>(in_map)) : 0.0;
+  };
+  const double ate = rms_error(Eigen::Isometry3d::Identity());
   const double ate_shape = ate_after_yaw_alignment(estimated_positions, true_positions);
-  estimated_positions = {};
-  true_positions = {};
   // The keyframe that holds the map frame, vehicle 0's first (its true pose is the identity):
   // its own error shows whether the frame held, and the ATE aligned by it alone is the issue's
   // "no alignment beyond the first vehicle's first pose" whether or not it did.
@@ -621,13 +623,10 @@ int main(int argc, char** argv) {
     const Eigen::Isometry3d align = truth(first->key) * first->pose.inverse();
     anchor_error_m = align.translation().norm();
     anchor_error_deg = Eigen::AngleAxisd(align.linear()).angle() * 180.0 / M_PI;
-    double aligned_sq = 0.0;
-    for (const mapping::KeyframePose& p : m.poses()) {
-      if (p.frame != anchor) continue;
-      aligned_sq += ((align * p.pose).translation() - truth(p.key).translation()).squaredNorm();
-    }
-    ate_first_pose_aligned = in_map ? std::sqrt(aligned_sq / in_map) : 0.0;
+    ate_first_pose_aligned = rms_error(align);
   }
+  estimated_positions = {};
+  true_positions = {};
 
   // Each vehicle's odometry yaw drift as the reopened mapper estimates it from its loops,
   // against the bias it was driven with (the drives' constructors draw it from the seed).
