@@ -25,6 +25,7 @@ MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
   place.read_range("proximity_radius", p.proximity_radius, 0.0, 1e4);
   place.read_range("proximity_cell_size", p.proximity_cell_size, 0.1, 1e4);
   place.read_range("proximity_cell_keyframes", p.proximity_cell_keyframes, 0, 1000000);
+  place.read_range("proximity_partner_gap", p.proximity_partner_gap, 0.0, 1e6);
   place.read_range("verification_budget_per_keyframe", p.verification_budget_per_keyframe, 0.0,
                    1e3);
   place.read_range("proximity_max_descriptor_distance", p.proximity_max_descriptor_distance, 0.0,
@@ -112,6 +113,7 @@ std::string mapper_config_to_yaml(const MapperConfig& c) {
   out << YAML::Key << "proximity_radius" << YAML::Value << c.place.proximity_radius;
   out << YAML::Key << "proximity_cell_size" << YAML::Value << c.place.proximity_cell_size;
   out << YAML::Key << "proximity_cell_keyframes" << YAML::Value << c.place.proximity_cell_keyframes;
+  out << YAML::Key << "proximity_partner_gap" << YAML::Value << c.place.proximity_partner_gap;
   out << YAML::Key << "verification_budget_per_keyframe" << YAML::Value
       << c.place.verification_budget_per_keyframe;
   out << YAML::Key << "proximity_max_descriptor_distance" << YAML::Value

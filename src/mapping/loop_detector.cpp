@@ -23,11 +23,10 @@ const PlaceDescriptor& LoopDetector::with_cells(const KeyframeNode& node,
   return loaded;
 }
 
-std::optional<LoopEdge> LoopDetector::detect(std::uint32_t query,
-                                             const std::vector<Distribution>& distributions,
-                                             const KeyframeGraph& graph, DistributionCache& cache,
-                                             MapperStats& stats, MapperCpu& cpu,
-                                             SearchScope scope) const {
+std::optional<LoopEdge> LoopDetector::detect(
+    std::uint32_t query, const std::vector<Distribution>& distributions, const KeyframeGraph& graph,
+    DistributionCache& cache, MapperStats& stats, MapperCpu& cpu, SearchScope scope,
+    const std::vector<std::uint32_t>& recent_partners) const {
   double t = thread_cpu_seconds();
   auto lap = [&t](double& stage) {
     const double now = thread_cpu_seconds();
@@ -68,7 +67,9 @@ std::optional<LoopEdge> LoopDetector::detect(std::uint32_t query,
   // the map, and descriptors read back from the store) would find a candidate never verified.
   const double max_distance = config_.place.proximity_max_descriptor_distance;
   if (scope == SearchScope::kAll) {
-    const auto c = proximity_candidate(query, graph);
+    bool new_partner = false;
+    const auto c = proximity_candidate(query, graph, recent_partners, &new_partner);
+    if (new_partner) ++stats.proximity_new_partner;
     bool skipped = false;
     if (c && max_distance > 0.0) {
       PlaceDescriptor loaded_query, loaded_candidate;
@@ -100,26 +101,37 @@ bool LoopDetector::eligible(const KeyframeNode& query, std::uint32_t candidate,
   return std::abs(query.path_length - c.path_length) >= config_.place.min_travel_gap;
 }
 
-std::optional<LoopCandidate> LoopDetector::proximity_candidate(std::uint32_t query,
-                                                               const KeyframeGraph& graph) const {
+std::optional<LoopCandidate> LoopDetector::proximity_candidate(
+    std::uint32_t query, const KeyframeGraph& graph,
+    const std::vector<std::uint32_t>& recent_partners, bool* new_partner) const {
   const double radius = config_.place.proximity_radius;
   if (radius <= 0.0) return std::nullopt;
   const KeyframeNode& q = graph.node(query);
   const StreamGroups& groups = graph.groups();
   const std::uint32_t group = groups.anchor_of(q.stream);
-  std::int64_t best = -1;
-  double best_sq = radius * radius;
+  // The nearest of all, and the nearest of the streams not looped with recently.
+  struct Nearest {
+    std::int64_t node = -1;
+    double d_sq = 0.0;
+  };
+  Nearest any{-1, radius * radius}, fresh{-1, radius * radius};
   // Strictly nearer wins; at equal distance the first by key, as the linear scan (streams by
   // name, then ids) finds it.
+  auto offer = [&](Nearest& best, std::uint32_t n, double d_sq) {
+    if (d_sq < best.d_sq ||
+        (best.node >= 0 && d_sq == best.d_sq &&
+         graph.node(n).key < graph.node(static_cast<std::uint32_t>(best.node)).key)) {
+      best.d_sq = d_sq;
+      best.node = n;
+    }
+  };
   auto consider = [&](std::uint32_t n) {
     const KeyframeNode& entry = graph.node(n);
     if (groups.anchor_of(entry.stream) != group || !eligible(q, n, graph)) return;
     const double d_sq = (entry.pose.translation() - q.pose.translation()).squaredNorm();
-    if (d_sq < best_sq || (best >= 0 && d_sq == best_sq &&
-                           entry.key < graph.node(static_cast<std::uint32_t>(best)).key)) {
-      best_sq = d_sq;
-      best = n;
-    }
+    offer(any, n, d_sq);
+    if (!std::binary_search(recent_partners.begin(), recent_partners.end(), entry.stream))
+      offer(fresh, n, d_sq);
   };
   if (config_.place.search == PlaceSearch::kLinear) {
     for (const auto& [name, s] : groups.by_name()) {
@@ -130,9 +142,12 @@ std::optional<LoopCandidate> LoopDetector::proximity_candidate(std::uint32_t que
     graph.grid().visit_nearest_first(
         q.pose.translation(), radius,
         static_cast<std::size_t>(config_.place.proximity_cell_keyframes), consider,
-        [&best_sq] { return best_sq; });
+        // Nothing nearer than the nearest of a new partner can change the answer.
+        [&fresh] { return fresh.d_sq; });
   }
+  const std::int64_t best = fresh.node >= 0 ? fresh.node : any.node;
   if (best < 0) return std::nullopt;
+  if (new_partner) *new_partner = fresh.node >= 0 && fresh.node != any.node;
   const KeyframeNode& b = graph.node(static_cast<std::uint32_t>(best));
   return LoopCandidate{static_cast<std::uint32_t>(best), b.pose.inverse() * q.pose};
 }

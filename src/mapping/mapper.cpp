@@ -129,6 +129,29 @@ struct Mapper::Impl {
     ++loops_since_optimize;
   }
 
+  /// The streams that node `query`'s stream closed a checked loop with in the
+  /// proximity_partner_gap metres of its path before the query, sorted (LoopDetector).
+  std::vector<std::uint32_t> recent_partners(std::uint32_t query) const {
+    std::vector<std::uint32_t> partners;
+    const double gap = config.place.proximity_partner_gap;
+    if (gap <= 0.0) return partners;
+    const KeyframeNode& q = graph.node(query);
+    const auto& chain = graph.groups().at(q.stream).nodes;
+    for (auto it = chain.find(q.key.id); it != chain.begin();) {
+      --it;
+      if (q.path_length - graph.node(it->second).path_length > gap) break;
+      const auto at = loops.at_node.find(it->second);
+      if (at == loops.at_node.end()) continue;
+      for (const std::uint32_t e : at->second) {
+        const auto [from, to] = loops.nodes[e];
+        partners.push_back(graph.node(from == it->second ? to : from).stream);
+      }
+    }
+    std::sort(partners.begin(), partners.end());
+    partners.erase(std::unique(partners.begin(), partners.end()), partners.end());
+    return partners;
+  }
+
   /// Per stream, the path length at its latest verified loop (loop_spacing).
   std::vector<double> last_loop;
   /// Verifications left to searches of all keyframes (verification_budget_per_keyframe).
@@ -192,8 +215,8 @@ AddStatus Mapper::add_keyframe(Keyframe keyframe, std::vector<LoopEdge>* new_loo
     m.verification_allowance = std::min(m.verification_allowance + budget, 100.0 * budget);
   if (const auto scope = m.search_due(stored.stream, stored.path_length)) {
     const std::size_t candidates_before = m.stats.candidates;
-    const auto loop =
-        m.detector.detect(index, keyframe.distributions, m.graph, *m.cache, m.stats, m.cpu, *scope);
+    const auto loop = m.detector.detect(index, keyframe.distributions, m.graph, *m.cache, m.stats,
+                                        m.cpu, *scope, m.recent_partners(index));
     if (budget > 0.0 && *scope == SearchScope::kAll)
       m.verification_allowance -= static_cast<double>(m.stats.candidates - candidates_before);
     if (loop) {

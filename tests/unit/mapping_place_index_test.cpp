@@ -2,6 +2,8 @@
 // scan's candidates: on the street drives (same loops, bit-identical poses) and, candidate by
 // candidate, on random ring keys with ties and ineligible nodes.
 
+#include "litamin2/mapping/keyframe_graph.hpp"
+#include "litamin2/mapping/loop_detector.hpp"
 #include "litamin2/mapping/mapper.hpp"
 #include "litamin2/mapping/ring_key_index.hpp"
 #include "litamin2/mapping/spatial_grid.hpp"
@@ -254,4 +256,48 @@ TEST(MappingPlaceIndex, DescriptorsAreSearchedOnlyWhenTheProximityCandidateFails
   EXPECT_EQ(p.descriptor_searches + p.proximity_verified, p.keyframes);
   EXPECT_EQ(by_descriptor.stats().descriptor_searches, by_descriptor.stats().keyframes);
   EXPECT_FALSE(by_descriptor.loops().empty());
+}
+
+TEST(MappingPlaceIndex, ProximityPrefersAStreamNotLoopedWithRecently) {
+  // Three streams of one group along a street: the query (stream "q") has keyframes of "near"
+  // 1 m away and of "far" 4 m away. Its stream looped with "near" recently: the candidate is
+  // "far"'s keyframe, unless every stream within the radius is a recent partner.
+  for (PlaceSearch search : {PlaceSearch::kIndexed, PlaceSearch::kLinear}) {
+    MapperConfig config = config_with(search);
+    KeyframeGraph graph(config.place.rings, config.place.proximity_cell_size);
+    auto add = [&](const std::string& stream, std::uint64_t id, double x, double y) {
+      KeyframeNode node;
+      node.key = {stream, id};
+      node.pose.translation() = Eigen::Vector3d(x, y, 0.0);
+      return graph.add(node);
+    };
+    for (std::uint64_t id = 0; id < 5; ++id) add("near", id, 100.0 + 2.0 * id, 1.0);
+    for (std::uint64_t id = 0; id < 5; ++id) add("far", id, 100.0 + 2.0 * id, 4.0);
+    const std::uint32_t query = add("q", 0, 104.0, 0.0);
+    StreamGroups& groups = graph.groups();
+    groups.join(groups.index("near"), groups.index("far"));
+    groups.join(groups.index("near"), groups.index("q"));
+    const LoopDetector detector(config);
+    const std::uint32_t near = groups.index("near"), far = groups.index("far");
+
+    bool new_partner = true;
+    auto c = detector.proximity_candidate(query, graph, {}, &new_partner);
+    ASSERT_TRUE(c);
+    EXPECT_EQ(graph.node(c->node).key, (KeyframeKey{"near", 2}));
+    EXPECT_FALSE(new_partner);
+
+    c = detector.proximity_candidate(query, graph, {near}, &new_partner);
+    ASSERT_TRUE(c);
+    EXPECT_EQ(graph.node(c->node).key, (KeyframeKey{"far", 2}));
+    EXPECT_TRUE(new_partner);
+    // The start of the verification is the query's pose in the candidate's frame.
+    EXPECT_NEAR(c->initial.translation().y(), -4.0, 1e-12);
+
+    std::vector<std::uint32_t> both{near, far};
+    std::sort(both.begin(), both.end());
+    c = detector.proximity_candidate(query, graph, both, &new_partner);
+    ASSERT_TRUE(c);
+    EXPECT_EQ(graph.node(c->node).key, (KeyframeKey{"near", 2}));
+    EXPECT_FALSE(new_partner);
+  }
 }

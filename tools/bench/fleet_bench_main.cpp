@@ -72,6 +72,7 @@ struct Options {
       mapping::PlaceRecognitionConfig{}.proximity_max_descriptor_distance;
   double proximity_cell_size = mapping::PlaceRecognitionConfig{}.proximity_cell_size;
   int proximity_cell_keyframes = mapping::PlaceRecognitionConfig{}.proximity_cell_keyframes;
+  double proximity_partner_gap = mapping::PlaceRecognitionConfig{}.proximity_partner_gap;
   int segment_keyframes = 10;
   int full_pass_max_segments = mapping::PoseGraphConfig{}.full_pass_max_segments;
   int iterative_min_free_poses = mapping::PoseGraphConfig{}.iterative_min_free_poses;
@@ -238,6 +239,9 @@ int main(int argc, char** argv) {
   app.add_option("--proximity-cell-keyframes", o.proximity_cell_keyframes,
                  "place_recognition.proximity_cell_keyframes (0: every keyframe of a cell)")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--proximity-partner-gap", o.proximity_partner_gap,
+                 "place_recognition.proximity_partner_gap, metres (0: the nearest keyframe)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--segment-keyframes", o.segment_keyframes, "pose_graph.segment_keyframes");
   app.add_option("--full-pass-min-shift", o.full_pass_min_shift,
                  "pose_graph.full_pass_min_shift, m")
@@ -298,6 +302,7 @@ int main(int argc, char** argv) {
   mapper.place.proximity_max_descriptor_distance = o.proximity_max_descriptor_distance;
   mapper.place.proximity_cell_size = o.proximity_cell_size;
   mapper.place.proximity_cell_keyframes = o.proximity_cell_keyframes;
+  mapper.place.proximity_partner_gap = o.proximity_partner_gap;
   mapper.graph.segment_keyframes = o.segment_keyframes;
   mapper.graph.full_pass_max_segments = o.full_pass_max_segments;
   mapper.graph.iterative_min_free_poses = o.iterative_min_free_poses;
@@ -732,6 +737,7 @@ int main(int argc, char** argv) {
       {"proximity_max_descriptor_distance", o.proximity_max_descriptor_distance},
       {"proximity_cell_size", o.proximity_cell_size},
       {"proximity_cell_keyframes", o.proximity_cell_keyframes},
+      {"proximity_partner_gap", o.proximity_partner_gap},
       {"keyframes", keyframes},
       {"target_keyframes", o.keyframes},
       {"stopped_early", !stop_reason.empty()},
@@ -775,6 +781,7 @@ int main(int argc, char** argv) {
       {"proximity_candidates_verified", final_stats.proximity_candidates},
       {"proximity_candidates_accepted", final_stats.proximity_verified},
       {"proximity_candidates_skipped", final_stats.proximity_skipped},
+      {"proximity_candidates_new_partner", final_stats.proximity_new_partner},
       {"descriptor_searches", final_stats.descriptor_searches},
       {"searches_over_budget", final_stats.searches_over_budget},
       {"ate_m", ate},

@@ -50,16 +50,21 @@ class LoopDetector {
 
   /// The loop of node `query` (with its distributions) with the keyframes present, if a
   /// candidate is verified; counts candidates, verified and rejected ones in `stats` and the
-  /// stages' CPU time in `cpu`.
+  /// stages' CPU time in `cpu`. `recent_partners` (sorted): the streams the query's stream
+  /// closed a loop with in the last proximity_partner_gap metres of its path.
   std::optional<LoopEdge> detect(std::uint32_t query,
                                  const std::vector<Distribution>& distributions,
                                  const KeyframeGraph& graph, DistributionCache& cache,
                                  MapperStats& stats, MapperCpu& cpu,
-                                 SearchScope scope = SearchScope::kAll) const;
+                                 SearchScope scope = SearchScope::kAll,
+                                 const std::vector<std::uint32_t>& recent_partners = {}) const;
 
-  /// The eligible keyframe of the query's group nearest to its current pose estimate.
-  std::optional<LoopCandidate> proximity_candidate(std::uint32_t query,
-                                                   const KeyframeGraph& graph) const;
+  /// The eligible keyframe of the query's group nearest to its current pose estimate among
+  /// the streams not in `recent_partners` (sorted), if any is within proximity_radius, else
+  /// among all; `new_partner` (if given) tells whether a nearer one of a partner was passed over.
+  std::optional<LoopCandidate> proximity_candidate(
+      std::uint32_t query, const KeyframeGraph& graph,
+      const std::vector<std::uint32_t>& recent_partners = {}, bool* new_partner = nullptr) const;
   /// The descriptor's best candidate, if its distance passes the threshold.
   std::optional<LoopCandidate> descriptor_candidate(std::uint32_t query, const KeyframeGraph& graph,
                                                     SearchScope scope = SearchScope::kAll) const;

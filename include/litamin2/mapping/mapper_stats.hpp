@@ -15,6 +15,9 @@ struct MapperStats {
   std::size_t proximity_candidates = 0;
   std::size_t proximity_verified = 0;
   std::size_t proximity_skipped = 0;
+  /// Proximity candidates of a stream not looped with recently, a nearer keyframe of a recent
+  /// partner passed over (proximity_partner_gap).
+  std::size_t proximity_new_partner = 0;
   /// Descriptor searches run: only for keyframes whose proximity candidate was missing,
   /// skipped or rejected (loop_detector.hpp).
   std::size_t descriptor_searches = 0;
