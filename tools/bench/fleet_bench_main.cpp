@@ -92,6 +92,7 @@ struct Options {
   unsigned seed = 1;
   bool keep_store = false;
   std::string reopen_only;
+  std::string restart_glibc_tunables = kAggregatorGlibcTunables;
 };
 
 /// Vehicle v's drive seed: the generator's, and the drift check's that draws the same bias.
@@ -286,6 +287,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 10000000));
   app.add_option("--seed", o.seed, "world and fleet seed");
   app.add_flag("--keep-store", o.keep_store, "use an existing store instead of removing it");
+  app.add_option("--restart-glibc-tunables", o.restart_glibc_tunables,
+                 "GLIBC_TUNABLES of the restart's process (default: the aggregator unit's; empty: "
+                 "this process's environment)");
   app.add_option("--reopen-only", o.reopen_only,
                  "only open the existing --store as the aggregator does at start and write the "
                  "restart's time, peak RSS and graph digest to this JSON file (the bench runs "
@@ -586,7 +590,8 @@ int main(int argc, char** argv) {
   const std::string report_path = o.store + ".restart.json";
   RestartReport restart;
   try {
-    restart = run_restart_child(std::vector<std::string>(argv, argv + argc), report_path);
+    restart = run_restart_child(std::vector<std::string>(argv, argv + argc), report_path,
+                                o.restart_glibc_tunables);
   } catch (const std::exception& e) {
     return litamin2::tools::runtime_error(app.get_name(), e.what());
   }
@@ -763,6 +768,7 @@ int main(int argc, char** argv) {
       {"restart_peak_rss_mb", restart.peak_rss_mb},
       {"store_mb", file_mb(o.store)},
       {"restart_s", restart.restart_s},
+      {"restart_glibc_tunables", o.restart_glibc_tunables},
       {"restart_identical", restart_identical},
       {"wrong_loops", wrong_loops},
       {"loops_dropped_inconsistent", final_stats.inconsistent},

@@ -72,15 +72,26 @@ void write_restart_report(const std::string& path, const RestartReport& report) 
 }
 
 RestartReport run_restart_child(const std::vector<std::string>& arguments,
-                                const std::string& report_path) {
+                                const std::string& report_path, const std::string& glibc_tunables) {
   std::vector<std::string> args = arguments;
   args.push_back("--reopen-only");
   args.push_back(report_path);
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
+  // GLIBC_TUNABLES is read when the process starts: it is set in the child's environment.
+  std::vector<std::string> variables;
+  for (char** e = environ; *e != nullptr; ++e) {
+    if (glibc_tunables.empty() || std::strncmp(*e, "GLIBC_TUNABLES=", 15) != 0)
+      variables.emplace_back(*e);
+  }
+  if (!glibc_tunables.empty()) variables.push_back("GLIBC_TUNABLES=" + glibc_tunables);
+  std::vector<char*> envp;
+  for (std::string& v : variables) envp.push_back(v.data());
+  envp.push_back(nullptr);
   pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, "/proc/self/exe", nullptr, nullptr, argv.data(), environ);
+  const int spawned =
+      posix_spawn(&pid, "/proc/self/exe", nullptr, nullptr, argv.data(), envp.data());
   if (spawned != 0) {
     throw std::runtime_error(std::string("cannot start the restart process: ") +
                              std::strerror(spawned));

@@ -30,10 +30,16 @@ struct RestartReport {
 /// Writes the report as JSON (the child's side).
 void write_restart_report(const std::string& path, const RestartReport& report);
 
+/// The malloc tuning the aggregator's systemd unit starts it with
+/// (deploy/systemd/litamin2-aggregator.service): transparent huge pages for the heap, so that a
+/// restart's ~2 GB of graph is not faulted in 4 KB at a time.
+inline constexpr const char* kAggregatorGlibcTunables = "glibc.malloc.hugetlb=1";
+
 /// Runs this executable (/proc/self/exe) with `arguments` plus `--reopen-only <report_path>`,
-/// waits for it and reads its report. Throws std::runtime_error when the child cannot start,
-/// fails or writes no valid report.
+/// waits for it and reads its report. The child's environment is this one's, with
+/// GLIBC_TUNABLES set to `glibc_tunables` (empty: as inherited). Throws std::runtime_error when
+/// the child cannot start, fails or writes no valid report.
 RestartReport run_restart_child(const std::vector<std::string>& arguments,
-                                const std::string& report_path);
+                                const std::string& report_path, const std::string& glibc_tunables);
 
 }  // namespace litamin2::bench
