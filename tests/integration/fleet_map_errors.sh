@@ -2,7 +2,8 @@
 # tools/eval/fleet_map_errors.py (docs/benchmarks.md, "The map frame's keyframe held, and what
 # the ATE is made of") on trajectories whose answer is known:
 #  1. a map turned by 1 degree and shifted as a whole: the map-frame ATE is the RMS of the
-#     offsets, the rigid fit finds the 1 degree turn and leaves nothing, no scatter;
+#     offsets, the rigid fit finds the 1 degree turn and leaves nothing, no scatter, and every
+#     keyframe's heading is 1 degree off;
 #  2. two vehicles over the same places, one 1.5 m to the side of the other (two layers): the
 #     rigid fit leaves 0.75 m, all of it scatter about the cell means, and no turn; the pairs
 #     of the two passes at one place are 1.5 m apart in the map, and --store tells whether
@@ -64,9 +65,10 @@ np.savetxt(f"{work}/short/v0.kitti", rows(truth[:9]))
 PY
 
 echo "== 1: a turned and shifted map"
-out=$(/usr/bin/python3 "$tool" "$work/turned")
+out=$(/usr/bin/python3 "$tool" "$work/turned" --anchor-headings 20)
 echo "$out"
 grep -q "^keyframes 300$" <<<"$out"
+[ "$(grep -c "^  keyframe .* from the anchor): +1.000; others" <<<"$out")" -eq 4 ]
 grep -q "^map-frame ATE $(cat "$work/turned/expected_ate") m" <<<"$out"
 grep -q "^after a rigid fit 0.000 m (rotation 1.000 deg)" <<<"$out"
 grep -q "^scatter about the cell means 0.000 m RMS$" <<<"$out"
@@ -98,4 +100,8 @@ if /usr/bin/python3 "$tool" "$work/turned" --store "$work/none.db" 2>"$work/err"
   echo "missing store accepted"; exit 1
 fi
 grep -q "no such store" "$work/err"
+if /usr/bin/python3 "$tool" "$work/turned" --anchor-headings -1 2>"$work/err"; then
+  echo "negative --anchor-headings accepted"; exit 1
+fi
+grep -q "must be >= 0" "$work/err"
 echo "fleet_map_errors.py: all checks passed"

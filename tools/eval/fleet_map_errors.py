@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """What a fleet map's error is made of, from litamin2-fleet-bench --trajectories DIR.
 
-  fleet_map_errors.py DIR [--cell 200] [--store S.db]
+  fleet_map_errors.py DIR [--cell 200] [--store S.db] [--anchor-headings 120]
 
 DIR holds <vehicle>.kitti and <vehicle>_gt.kitti (3x4 rows, the map frame). Printed:
 - the map-frame ATE (RMS translation error, no alignment: the bench's ate_m), horizontal and
@@ -18,6 +18,10 @@ DIR holds <vehicle>.kitti and <vehicle>_gt.kitti (3x4 rows, the map frame). Prin
 - with --store (the bench's store): of those pairs, the share that a loop edge ties directly
   (between the two vehicles, each end within 15 keyframes of its keyframe), for pairs the map
   puts within 1 m and for pairs it puts further apart.
+- with --anchor-headings N: along the first vehicle's first N keyframes (the map frame's
+  anchor), every 5th keyframe's heading error, and the mean heading error of the other
+  passes' keyframes within 2 m of it in the truth: whether the first vehicle or the whole map
+  turns there.
 Row i of <vehicle>.kitti is the vehicle's keyframe i (the bench's ids).
 Needs python3-numpy and python3-scipy (Debian). docs/benchmarks.md, "The map frame's keyframe
 held, and what the ATE is made of" and "Layers".
@@ -33,13 +37,18 @@ import numpy as np
 def load(folder):
     """Positions of every keyframe (estimate, truth), each one's vehicle number and keyframe
     id, and the vehicles' names."""
-    estimate, truth, vehicle, ids, names = [], [], [], [], []
+    estimate, truth, heading, vehicle, ids, names = [], [], [], [], [], []
     for gt in sorted(glob.glob(os.path.join(folder, "*_gt.kitti"))):
         est = gt[: -len("_gt.kitti")] + ".kitti"
-        e = np.loadtxt(est, ndmin=2)[:, [3, 7, 11]]
-        t = np.loadtxt(gt, ndmin=2)[:, [3, 7, 11]]
-        if len(e) != len(t):
-            sys.exit(f"{est}: {len(e)} poses against {len(t)} in {gt}")
+        e_rows = np.loadtxt(est, ndmin=2)
+        t_rows = np.loadtxt(gt, ndmin=2)
+        if len(e_rows) != len(t_rows):
+            sys.exit(f"{est}: {len(e_rows)} poses against {len(t_rows)} in {gt}")
+        e, t = e_rows[:, [3, 7, 11]], t_rows[:, [3, 7, 11]]
+        # Heading error: the yaw of R_estimate R_truth^T.
+        r_e, r_t = e_rows.reshape(-1, 3, 4)[:, :, :3], t_rows.reshape(-1, 3, 4)[:, :, :3]
+        difference = np.einsum("nij,nkj->nik", r_e, r_t)
+        heading.append(np.degrees(np.arctan2(difference[:, 1, 0], difference[:, 0, 0])))
         vehicle.append(np.full(len(t), len(names)))
         ids.append(np.arange(len(t)))
         names.append(os.path.basename(gt)[: -len("_gt.kitti")])
@@ -47,8 +56,8 @@ def load(folder):
         truth.append(t)
     if not estimate:
         sys.exit(f"{folder}: no *_gt.kitti files")
-    return (np.vstack(estimate), np.vstack(truth), np.concatenate(vehicle), np.concatenate(ids),
-            names)
+    return (np.vstack(estimate), np.vstack(truth), np.concatenate(heading),
+            np.concatenate(vehicle), np.concatenate(ids), names)
 
 
 def pairs_at_one_place(estimate, truth, vehicle, ids, radius=1.0, samples=20000, seed=0):
@@ -104,17 +113,38 @@ def rms(v):
     return float(np.sqrt((v**2).sum(1).mean()))
 
 
+def print_anchor_headings(truth, heading, vehicle, ids, names, count):
+    """The first vehicle's heading error along its first `count` keyframes, and that of the
+    other passes' keyframes within 2 m of each in the truth."""
+    from scipy.spatial import cKDTree
+
+    tree = cKDTree(truth[:, :2])
+    first = np.flatnonzero(vehicle == 0)
+    print(f"headings along {names[0]}'s first {min(count, len(first))} keyframes "
+          "(error, deg; other passes within 2 m: mean, count):")
+    for n in first[:count:5]:
+        near = np.array(tree.query_ball_point(truth[n, :2], 2.0), dtype=np.int64)
+        others = near[(vehicle[near] != 0) | (np.abs(ids[near] - ids[n]) > 50)]
+        mean = f"{heading[others].mean():+.3f}" if len(others) else "none"
+        print(f"  keyframe {ids[n]:5d} ({np.linalg.norm(truth[n, :2] - truth[first[0], :2]):6.1f} m "
+              f"from the anchor): {heading[n]:+.3f}; others {mean}, {len(others)}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("folder", help="litamin2-fleet-bench --trajectories folder")
     parser.add_argument("--cell", type=float, default=200.0, help="cell edge, m")
     parser.add_argument("--store", help="the bench's store: which pairs a loop ties")
+    parser.add_argument("--anchor-headings", type=int, default=0, metavar="N",
+                        help="heading errors along the first vehicle's first N keyframes")
     args = parser.parse_args()
     if args.cell <= 0:
         sys.exit("--cell must be positive")
     if args.store and not os.path.isfile(args.store):
         sys.exit(f"{args.store}: no such store")
-    estimate, truth, vehicle, ids, names = load(args.folder)
+    if args.anchor_headings < 0:
+        sys.exit("--anchor-headings must be >= 0")
+    estimate, truth, heading, vehicle, ids, names = load(args.folder)
     rotation, mean_e, mean_t = rigid_fit(estimate, truth)
     residual = (rotation @ (estimate - mean_e).T).T + mean_t - truth
     turn = np.degrees(np.arccos(np.clip((np.trace(rotation) - 1) / 2, -1, 1)))
@@ -136,6 +166,8 @@ def main():
         print(f"cell x {cx * args.cell:7.0f} y {cy * args.cell:7.0f}: {len(r):7d} keyframes, "
               f"mean residual ({mean[0]:+.2f}, {mean[1]:+.2f}, {mean[2]:+.2f}) m")
     print(f"scatter about the cell means {np.sqrt(scatter_sq / counted):.3f} m RMS")
+    if args.anchor_headings > 0:
+        print_anchor_headings(truth, heading, vehicle, ids, names, args.anchor_headings)
     i, j, offset = pairs_at_one_place(estimate, truth, vehicle, ids)
     if len(offset) == 0:
         print("pairs of two passes within 1 m: none")
