@@ -77,6 +77,7 @@ MapperConfig mapper_config_from_yaml(const YAML::Node& node) {
   graph.read_range("local_max_free_keyframes", g.local_max_free_keyframes, 0, 1'000'000);
   graph.read("local_widen_for_loops", g.local_widen_for_loops);
   graph.read_range("segment_keyframes", g.segment_keyframes, 1, 100'000);
+  graph.read("full_pass_shift_segments", g.full_pass_shift_segments);
   graph.read_range("full_pass_max_segments", g.full_pass_max_segments, 0, 100'000'000);
   graph.read_range("full_pass_min_shift", g.full_pass_min_shift, 0.0, 10.0);
   graph.read_range("full_pass_min_turn_deg", g.full_pass_min_turn_deg, 0.0, 10.0);
@@ -163,6 +164,7 @@ std::string mapper_config_to_yaml(const MapperConfig& c) {
   out << YAML::Key << "local_max_free_keyframes" << YAML::Value << c.graph.local_max_free_keyframes;
   out << YAML::Key << "local_widen_for_loops" << YAML::Value << c.graph.local_widen_for_loops;
   out << YAML::Key << "segment_keyframes" << YAML::Value << c.graph.segment_keyframes;
+  out << YAML::Key << "full_pass_shift_segments" << YAML::Value << c.graph.full_pass_shift_segments;
   out << YAML::Key << "full_pass_max_segments" << YAML::Value << c.graph.full_pass_max_segments;
   out << YAML::Key << "full_pass_min_shift" << YAML::Value << c.graph.full_pass_min_shift;
   out << YAML::Key << "full_pass_min_turn_deg" << YAML::Value << c.graph.full_pass_min_turn_deg;

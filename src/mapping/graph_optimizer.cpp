@@ -483,12 +483,15 @@ std::size_t full_pass_segment_keyframes(const PoseGraphConfig& config, std::size
 }
 
 FullPassProblem GraphOptimizer::full_pass_problem(const KeyframeGraph& graph,
-                                                  const GraphLoops& loops) const {
+                                                  const GraphLoops& loops, std::size_t pass) const {
   FullPassProblem p;
   p.config = config_.graph;
   const StreamGroups& groups = graph.groups();
   p.segment_keyframes = full_pass_segment_keyframes(config_.graph, graph.size());
   const std::size_t segment = p.segment_keyframes;
+  // A stream's segments start at its first keyframe and then every segment keyframes from
+  // the shift on.
+  const std::size_t shift = config_.graph.full_pass_shift_segments ? pass % segment : 0;
   p.segment_of_node.assign(graph.size(), -1);
   p.anchor_of_stream.resize(groups.streams().size());
   p.last_segment_of_stream.assign(groups.streams().size(), -1);
@@ -499,7 +502,9 @@ FullPassProblem GraphOptimizer::full_pass_problem(const KeyframeGraph& graph,
     std::int64_t previous = -1;
     for (const auto& [id, n] : chain) {
       const KeyframeNode& node = graph.node(n);
-      if (k++ % segment == 0) {
+      const bool cut = k == 0 || (k + segment - shift) % segment == 0;
+      ++k;
+      if (cut) {
         p.poses.push_back(node.pose);
         // The anchor stream's first segment holds the group's frame.
         p.fixed.push_back(k == 1 && p.anchor_of_stream[s] == s);

@@ -40,6 +40,8 @@ struct Mapper::Impl {
   bool cells_outside = false;
   int loops_since_optimize = 0;
   std::size_t checked_since_full_pass = 0;
+  /// Full-pass problems made (each shifts the segments' cuts).
+  std::size_t full_pass_problems = 0;
   /// Per stream, the path length at its latest place search (search_spacing).
   std::vector<double> last_search;
 
@@ -284,7 +286,8 @@ OptimizeSummary Mapper::optimize_full() {
 
 FullPassProblem Mapper::full_pass_problem() const {
   impl_->checked_since_full_pass = 0;
-  return impl_->optimizer.full_pass_problem(impl_->graph, impl_->loops);
+  return impl_->optimizer.full_pass_problem(impl_->graph, impl_->loops,
+                                            impl_->full_pass_problems++);
 }
 
 void Mapper::apply_full_pass(const FullPassProblem& problem) {

@@ -24,6 +24,8 @@ TEST(MappingConfig, EmittedYamlReadsBack) {
   config.place.proximity_cell_size = 2.5;
   config.place.proximity_cell_keyframes = 0;
   config.graph.local_hold_loops = 3;
+  config.graph.full_pass_shift_segments = false;
+  config.place.proximity_partner_gap = 250.0;
   config.verification.min_fitness = 0.7;
   config.verification.max_isotropy = 0.05;
   config.graph.threads = 2;

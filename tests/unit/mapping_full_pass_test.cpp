@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <memory>
 
 using namespace litamin2;
 using namespace litamin2::mapping;
@@ -38,6 +40,8 @@ TEST(MappingFullPass, RepeatedPassesKeepRotationsOrthonormalAndPosesStill) {
   config.place.min_travel_gap = 20.0;
   config.graph.full_pass_min_shift = 0.0;  // every pass rewrites every pose
   config.graph.full_pass_min_turn_deg = 0.0;
+  // Fixed cuts: each pass solves the same problem (shifted ones converge over passes).
+  config.graph.full_pass_shift_segments = false;
   Mapper mapper(config);
   for (const auto& kf : keyframes) {
     mapper.add_keyframe(kf);
@@ -171,4 +175,60 @@ TEST(MappingFullPass, APassLeavesTheKeyframesItWouldMoveLessThanTheThreshold) {
   EXPECT_GT(moved, 0u);
   EXPECT_EQ(thresholded.stats().full_pass_keyframes_moved, moved);
   EXPECT_EQ(every.stats().full_pass_keyframes_moved, before.size());
+}
+
+TEST(MappingFullPass, EachPassCutsTheSegmentsOneKeyframeFurther) {
+  // pose_graph.full_pass_shift_segments: a stream's first segment starts at its first keyframe
+  // (and holds the frame), the others every segment_keyframes from the pass's shift on.
+  const auto keyframes = drive("a", out_and_back(), 0.05, 1);
+  for (bool shift : {true, false}) {
+    MapperConfig config;
+    config.graph.segment_keyframes = 10;
+    config.graph.full_pass_shift_segments = shift;
+    Mapper mapper(config);
+    for (const auto& kf : keyframes) mapper.add_keyframe(kf);
+    ASSERT_GT(keyframes.size(), 30u);
+    for (std::size_t pass = 0; pass < 12; ++pass) {
+      const FullPassProblem problem = mapper.full_pass_problem();
+      const std::size_t s = shift ? pass % 10 : 0;
+      for (std::size_t k = 0; k < keyframes.size(); ++k) {
+        // Cuts at 0 and at k = s, s + 10, ... (k > 0).
+        const std::size_t expected = (k + 10 - s) / 10 - (s == 0 ? 1 : 0);
+        EXPECT_EQ(problem.segment_of_node[k], static_cast<std::int32_t>(expected))
+            << "shift " << shift << " pass " << pass << " keyframe " << k;
+      }
+      EXPECT_TRUE(problem.fixed[0]);
+    }
+  }
+}
+
+TEST(MappingFullPass, ShiftedCutsApproachTheKeyframeLevelSolution) {
+  // With fixed cuts the shape within each segment is the local optimisations' for good; with
+  // shifted cuts repeated passes move towards the solution of the whole keyframe graph.
+  const auto keyframes = drive("a", out_and_back(), 0.05, 1);
+  auto mapped = [&](int segment, bool shift, int passes) {
+    MapperConfig config;
+    config.place.min_travel_gap = 20.0;
+    config.graph.segment_keyframes = segment;
+    config.graph.full_pass_shift_segments = shift;
+    config.graph.full_pass_min_shift = 0.0;
+    config.graph.full_pass_min_turn_deg = 0.0;
+    auto mapper = std::make_unique<Mapper>(config);
+    for (const auto& kf : keyframes) {
+      mapper->add_keyframe(kf);
+      mapper->optimize();
+    }
+    for (int pass = 0; pass < passes; ++pass) mapper->optimize_full();
+    return mapper;
+  };
+  const auto exact = mapped(1, false, 3);
+  const auto fixed = mapped(10, false, 30);
+  const auto shifted = mapped(10, true, 30);
+  ASSERT_GT(exact->loops().size(), 5u);
+  const double off_fixed = largest_translation_difference(fixed->poses(), exact->poses());
+  const double off_shifted = largest_translation_difference(shifted->poses(), exact->poses());
+  std::printf(
+      "largest distance from the keyframe-level solution: fixed cuts %.4f m, shifted %.4f m\n",
+      off_fixed, off_shifted);
+  EXPECT_LT(off_shifted, 0.5 * off_fixed);
 }

@@ -74,6 +74,7 @@ struct Options {
   int proximity_cell_keyframes = mapping::PlaceRecognitionConfig{}.proximity_cell_keyframes;
   double proximity_partner_gap = mapping::PlaceRecognitionConfig{}.proximity_partner_gap;
   int segment_keyframes = 10;
+  bool full_pass_shift_segments = mapping::PoseGraphConfig{}.full_pass_shift_segments;
   int full_pass_max_segments = mapping::PoseGraphConfig{}.full_pass_max_segments;
   int iterative_min_free_poses = mapping::PoseGraphConfig{}.iterative_min_free_poses;
   double full_pass_min_shift = mapping::PoseGraphConfig{}.full_pass_min_shift;
@@ -244,6 +245,8 @@ int main(int argc, char** argv) {
                  "place_recognition.proximity_partner_gap, metres (0: the nearest keyframe)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--segment-keyframes", o.segment_keyframes, "pose_graph.segment_keyframes");
+  app.add_option("--full-pass-shift-segments", o.full_pass_shift_segments,
+                 "pose_graph.full_pass_shift_segments (0 or 1)");
   app.add_option("--full-pass-min-shift", o.full_pass_min_shift,
                  "pose_graph.full_pass_min_shift, m")
       ->check(CLI::Range(0.0, 10.0));
@@ -308,6 +311,7 @@ int main(int argc, char** argv) {
   mapper.place.proximity_cell_keyframes = o.proximity_cell_keyframes;
   mapper.place.proximity_partner_gap = o.proximity_partner_gap;
   mapper.graph.segment_keyframes = o.segment_keyframes;
+  mapper.graph.full_pass_shift_segments = o.full_pass_shift_segments;
   mapper.graph.full_pass_max_segments = o.full_pass_max_segments;
   mapper.graph.iterative_min_free_poses = o.iterative_min_free_poses;
   mapper.graph.full_pass_min_shift = o.full_pass_min_shift;
@@ -805,6 +809,7 @@ int main(int argc, char** argv) {
       {"tiles", tiles},
       {"keyframes_not_fused_at_stop", map_pending},
       {"tile_segment_keyframes", o.tile_segment_keyframes},
+      {"full_pass_shift_segments", o.full_pass_shift_segments},
       {"full_pass_max_segments", o.full_pass_max_segments},
       {"iterative_min_free_poses", o.iterative_min_free_poses},
       {"full_pass_on_stop", o.full_pass_on_stop},

@@ -114,7 +114,10 @@ class GraphOptimizer {
                                    MapperStats& stats) const;
 
   /// The full pass's problem over the graph's current state.
-  FullPassProblem full_pass_problem(const KeyframeGraph& graph, const GraphLoops& loops) const;
+  /// `pass`: the full pass's number, which shifts the segments' cuts
+  /// (PoseGraphConfig::full_pass_shift_segments).
+  FullPassProblem full_pass_problem(const KeyframeGraph& graph, const GraphLoops& loops,
+                                    std::size_t pass = 0) const;
   /// Solves it (thread-safe: touches nothing else).
   static void solve_full_pass(FullPassProblem& problem);
   /// Moves the graph's keyframes by the solved segments' corrections. Streams whose group

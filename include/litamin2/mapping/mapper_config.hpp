@@ -208,6 +208,12 @@ struct PoseGraphConfig {
   /// keyframe its own node): its cost and memory are those of a graph this many times
   /// smaller, and the shape within a segment is the local optimisation's.
   int segment_keyframes = 10;
+  /// Each full pass cuts the segments one keyframe further along than the pass before (the
+  /// shift cycles through the segment's length). With fixed cuts the shape within a segment
+  /// is only ever the local optimisations', which fit each new pass to the map as it was: the
+  /// first pass over a street, odometry noise included, bends every later one. Shifted cuts
+  /// let every odometry edge, in turn, be one the full pass weighs.
+  bool full_pass_shift_segments = true;
   /// At most about this many segments in a full pass: beyond segment_keyframes x this many
   /// keyframes the segments grow (in multiples of segment_keyframes) so that the pass stays this
   /// size. The pass's sparse Cholesky factor grows faster than the graph (the loops between
