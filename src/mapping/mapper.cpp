@@ -132,11 +132,13 @@ struct Mapper::Impl {
   }
 
   /// The streams that node `query`'s stream closed a checked loop with in the
-  /// proximity_partner_gap metres of its path before the query, sorted (LoopDetector).
-  std::vector<std::uint32_t> recent_partners(std::uint32_t query) const {
+  /// proximity_partner_gap metres of its path before the query, sorted (LoopDetector). Only a
+  /// search of all keyframes with a proximity radius reads them: other scopes get none.
+  std::vector<std::uint32_t> recent_partners(std::uint32_t query, SearchScope scope) const {
     std::vector<std::uint32_t> partners;
     const double gap = config.place.proximity_partner_gap;
-    if (gap <= 0.0) return partners;
+    if (gap <= 0.0 || scope != SearchScope::kAll || config.place.proximity_radius <= 0.0)
+      return partners;
     const KeyframeNode& q = graph.node(query);
     const auto& chain = graph.groups().at(q.stream).nodes;
     for (auto it = chain.find(q.key.id); it != chain.begin();) {
@@ -218,7 +220,7 @@ AddStatus Mapper::add_keyframe(Keyframe keyframe, std::vector<LoopEdge>* new_loo
   if (const auto scope = m.search_due(stored.stream, stored.path_length)) {
     const std::size_t candidates_before = m.stats.candidates;
     const auto loop = m.detector.detect(index, keyframe.distributions, m.graph, *m.cache, m.stats,
-                                        m.cpu, *scope, m.recent_partners(index));
+                                        m.cpu, *scope, m.recent_partners(index, *scope));
     if (budget > 0.0 && *scope == SearchScope::kAll)
       m.verification_allowance -= static_cast<double>(m.stats.candidates - candidates_before);
     if (loop) {
