@@ -9,6 +9,7 @@
 #include <optional>
 #include <set>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -58,6 +59,8 @@ struct KeyframeStore::Impl {
   /// The open Batch, if any.
   std::unique_ptr<Transaction> batch;
   int version = KeyframeStore::kSchemaVersion;
+  /// StoreOptions::restart_readers.
+  int restart_readers = 1;
 
   /// A transaction of its own unless a Batch is open.
   std::unique_ptr<Transaction> transaction() {
@@ -136,6 +139,15 @@ struct KeyframeStore::Impl {
 KeyframeStore KeyframeStore::open(const std::string& path, OpenMode mode,
                                   const StoreOptions& options) {
   if (path.empty()) throw StoreError(path, "empty store path");
+  if (options.page_size < 512 || options.page_size > 65536 ||
+      (options.page_size & (options.page_size - 1)) != 0) {
+    throw StoreError(path, "page_size " + std::to_string(options.page_size) +
+                               " is not a power of two in [512, 65536]");
+  }
+  if (options.restart_readers < 1 || options.restart_readers > 64) {
+    throw StoreError(
+        path, "restart_readers " + std::to_string(options.restart_readers) + " is outside [1, 64]");
+  }
   if (options.busy_timeout_ms < 0) {
     throw StoreError(path, "negative busy_timeout_ms " + std::to_string(options.busy_timeout_ms));
   }
@@ -163,12 +175,13 @@ KeyframeStore KeyframeStore::open(const std::string& path, OpenMode mode,
   auto impl = std::make_unique<Impl>();
   impl->path = path;
   impl->read_only = mode == OpenMode::kReadOnly;
+  impl->restart_readers = options.restart_readers;
   const int flags = impl->read_only ? SQLITE_OPEN_READONLY
                                     : SQLITE_OPEN_READWRITE | (create ? SQLITE_OPEN_CREATE : 0);
   impl->db = open_connection(path, flags);
   sqlite3* db = impl->db.get();
   sqlite3_busy_timeout(db, options.busy_timeout_ms);
-  if (create) create_schema(db, path);
+  if (create) create_schema(db, path, options.page_size);
   if (!impl->read_only) migrate_schema(db, path);
   impl->version = schema_version(db, path);
   if (!impl->read_only) {
@@ -337,62 +350,132 @@ mapping::PlaceDescriptor KeyframeStore::load_descriptor(const KeyframeKey& key) 
   }
 }
 
+namespace {
+
+/// load_graph's nodes query over the rows whose rowid lies in [?1, ?2], the rowid last. A
+/// version-1 store opened read-only has no nodes table: the same columns of keyframes.
+const char* nodes_query(int version) {
+  return version >= 2
+             ? "SELECT n.stream, n.id, n.stamp_ns, n.voxel_size, n.pose, n.covariance, "
+               "n.descriptor, c.frame, c.pose, n.map_pose, n.rowid FROM nodes n LEFT JOIN "
+               "corrected_poses c ON c.stream = n.stream AND c.id = n.id WHERE n.rowid BETWEEN ?1 "
+               "AND ?2"
+             : "SELECT k.stream, k.id, k.stamp_ns, k.voxel_size, k.pose, k.covariance, NULL, "
+               "c.frame, c.pose, NULL, k.rowid FROM keyframes k LEFT JOIN corrected_poses c "
+               "ON c.stream = k.stream AND c.id = k.id WHERE k.rowid BETWEEN ?1 AND ?2";
+}
+
+/// One row of nodes_query.
+KeyframeStore::GraphRecords::Node decode_node_row(sqlite3_stmt* row, const std::string& path,
+                                                  bool descriptor_cells) {
+  KeyframeStore::GraphRecords::Node rec;
+  mapping::KeyframeNode& n = rec.node;
+  try {
+    n.key.stream = column_text(row, 0, "stream");
+    n.key.id = column_id(row, 1, "id");
+    n.stamp.nanoseconds = column_int(row, 2, "stamp_ns");
+    n.voxel_size = column_real(row, 3, "voxel_size");
+    const auto pose = column_blob(row, 4, "pose");
+    n.odom_pose = decode_pose(pose.first, pose.second);
+    const auto covariance = column_blob(row, 5, "covariance");
+    n.covariance = decode_matrix6(covariance.first, covariance.second).cast<float>();
+    if (sqlite3_column_type(row, 6) != SQLITE_NULL) {
+      const auto d = column_blob(row, 6, "descriptor");
+      n.descriptor = decode_descriptor(d.first, d.second, descriptor_cells);
+      rec.has_descriptor = true;
+    }
+    n.pose = n.odom_pose;
+    if (sqlite3_column_type(row, 8) != SQLITE_NULL) {
+      rec.frame = column_text(row, 7, "frame");
+      const auto corrected = column_blob(row, 8, "corrected pose");
+      n.pose = decode_pose(corrected.first, corrected.second);
+      rec.has_pose = true;
+    }
+    if (sqlite3_column_type(row, 9) != SQLITE_NULL) {
+      const auto fused = column_blob(row, 9, "map pose");
+      rec.map_pose = decode_pose(fused.first, fused.second);
+    }
+  } catch (const std::invalid_argument& e) {
+    throw StoreError(path, "corrupt node row " + describe(n.key) + ": " + e.what());
+  }
+  return rec;
+}
+
+/// Calls `row(rowid, stmt)` for each row of nodes_query with rowid in [first, last], in
+/// rowid order.
+template <typename Row>
+void scan_nodes(sqlite3* db, const std::string& path, int version, std::int64_t first,
+                std::int64_t last, Row&& row) {
+  Statement s(db, path, nodes_query(version));
+  s.bind(1, first);
+  s.bind(2, last);
+  while (s.step("cannot read the nodes")) row(sqlite3_column_int64(s.get(), 10), s.get());
+}
+
+}  // namespace
+
 KeyframeStore::GraphRecords KeyframeStore::load_graph(bool descriptor_cells) const {
   Impl& im = impl();
   GraphRecords out;
-  // A version-1 store opened read-only has no nodes table: the same columns of keyframes.
-  const char* sql =
-      im.version >= 2
-          ? "SELECT n.stream, n.id, n.stamp_ns, n.voxel_size, n.pose, n.covariance, "
-            "n.descriptor, c.frame, c.pose, n.map_pose FROM nodes n LEFT JOIN corrected_poses c "
-            "ON c.stream = n.stream AND c.id = n.id"
-          : "SELECT k.stream, k.id, k.stamp_ns, k.voxel_size, k.pose, k.covariance, NULL, "
-            "c.frame, c.pose, NULL FROM keyframes k LEFT JOIN corrected_poses c "
-            "ON c.stream = k.stream AND c.id = k.id";
+  const char* table = im.version >= 2 ? "nodes" : "keyframes";
+  std::int64_t first = 0, last = -1, count = 0;
   {
+    Statement range(im.db.get(), im.path,
+                    (std::string("SELECT min(rowid), max(rowid), count(*) FROM ") + table).c_str());
+    if (range.step("cannot count the nodes") &&
+        sqlite3_column_type(range.get(), 0) != SQLITE_NULL) {
+      first = sqlite3_column_int64(range.get(), 0);
+      last = sqlite3_column_int64(range.get(), 1);
+      count = sqlite3_column_int64(range.get(), 2);
+    }
+  }
+  // Rows without gaps in their rowids (as the store writes them: appended, never deleted) go
+  // to their slot by rowid, so ranges read side by side land in the one scan's order. Only a
+  // store opened for writing, outside a transaction, is read so: its connection is the only
+  // writer and has nothing uncommitted, so the ranges all see the rows counted.
+  const bool dense = count > 0 && last - first + 1 == count;
+  const std::int64_t kMinRowsPerReader = 4096;
+  const bool one_writer = !im.read_only && sqlite3_get_autocommit(im.db.get()) != 0;
+  const std::int64_t readers =
+      dense && one_writer
+          ? std::clamp<std::int64_t>(count / kMinRowsPerReader, 1, im.restart_readers)
+          : 1;
+  out.readers = static_cast<int>(readers);
+  if (readers == 1) {
     // Reserved: growing a vector of a million ~1.8 kB records copied it and faulted in fresh
     // pages at every doubling (a fifth of a 10^6-keyframe restart's time in a profile).
-    Statement count(
-        im.db.get(), im.path,
-        im.version >= 2 ? "SELECT COUNT(*) FROM nodes" : "SELECT COUNT(*) FROM keyframes");
-    if (count.step("cannot count the nodes"))
-      out.nodes.reserve(static_cast<std::size_t>(
-          std::max<std::int64_t>(0, sqlite3_column_int64(count.get(), 0))));
-  }
-  Statement s(im.db.get(), im.path, sql);
-  while (s.step("cannot read the nodes")) {
-    GraphRecords::Node rec;
-    mapping::KeyframeNode& n = rec.node;
-    sqlite3_stmt* row = s.get();
-    try {
-      n.key.stream = column_text(row, 0, "stream");
-      n.key.id = column_id(row, 1, "id");
-      n.stamp.nanoseconds = column_int(row, 2, "stamp_ns");
-      n.voxel_size = column_real(row, 3, "voxel_size");
-      const auto pose = column_blob(row, 4, "pose");
-      n.odom_pose = decode_pose(pose.first, pose.second);
-      const auto covariance = column_blob(row, 5, "covariance");
-      n.covariance = decode_matrix6(covariance.first, covariance.second).cast<float>();
-      if (sqlite3_column_type(row, 6) != SQLITE_NULL) {
-        const auto d = column_blob(row, 6, "descriptor");
-        n.descriptor = decode_descriptor(d.first, d.second, descriptor_cells);
-        rec.has_descriptor = true;
-      }
-      n.pose = n.odom_pose;
-      if (sqlite3_column_type(row, 8) != SQLITE_NULL) {
-        rec.frame = column_text(row, 7, "frame");
-        const auto corrected = column_blob(row, 8, "corrected pose");
-        n.pose = decode_pose(corrected.first, corrected.second);
-        rec.has_pose = true;
-      }
-      if (sqlite3_column_type(row, 9) != SQLITE_NULL) {
-        const auto fused = column_blob(row, 9, "map pose");
-        rec.map_pose = decode_pose(fused.first, fused.second);
-      }
-    } catch (const std::invalid_argument& e) {
-      throw StoreError(im.path, "corrupt node row " + describe(n.key) + ": " + e.what());
+    out.nodes.reserve(static_cast<std::size_t>(count));
+    scan_nodes(im.db.get(), im.path, im.version, first, last, [&](std::int64_t, sqlite3_stmt* row) {
+      out.nodes.push_back(decode_node_row(row, im.path, descriptor_cells));
+    });
+  } else {
+    out.nodes.resize(static_cast<std::size_t>(count));
+    std::vector<std::exception_ptr> errors(static_cast<std::size_t>(readers));
+    std::vector<std::thread> threads;
+    const std::int64_t per_reader = (count + readers - 1) / readers;
+    for (std::int64_t r = 0; r < readers; ++r) {
+      const std::int64_t from = first + r * per_reader;
+      const std::int64_t to = std::min(last, from + per_reader - 1);
+      threads.emplace_back([&, r, from, to] {
+        try {
+          // A connection of its own: SQLite connections are not shared between threads here
+          // (SQLITE_OPEN_NOMUTEX).
+          Connection db = open_connection(im.path, SQLITE_OPEN_READONLY);
+          scan_nodes(db.get(), im.path, im.version, from, to,
+                     [&](std::int64_t rowid, sqlite3_stmt* row) {
+                       if (rowid < from || rowid > to)
+                         throw StoreError(im.path, "nodes scan returned a row out of range");
+                       out.nodes[static_cast<std::size_t>(rowid - first)] =
+                           decode_node_row(row, im.path, descriptor_cells);
+                     });
+        } catch (...) {
+          errors[static_cast<std::size_t>(r)] = std::current_exception();
+        }
+      });
     }
-    out.nodes.push_back(std::move(rec));
+    for (std::thread& t : threads) t.join();
+    for (const std::exception_ptr& e : errors)
+      if (e) std::rethrow_exception(e);
   }
   out.loops = load_loop_edges();
   out.pending_merges = load_pending_merges();

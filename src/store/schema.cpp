@@ -225,7 +225,9 @@ void check_keyframe_store(const std::string& path, std::uintmax_t file_size) {
   check_is_keyframe_store(path);
 }
 
-void create_schema(sqlite3* db, const std::string& path) {
+void create_schema(sqlite3* db, const std::string& path, int page_size) {
+  // Takes effect only in an empty database, before its first table.
+  exec(db, path, ("PRAGMA page_size = " + std::to_string(page_size)).c_str());
   Transaction tx(db, path);
   if (query_int(db, path, "SELECT count(*) FROM sqlite_master") != 0) {
     throw StoreError(path, "was initialised by another connection while being created; reopen it");

@@ -19,8 +19,8 @@ void check_keyframe_store(const std::string& path, std::uintmax_t file_size);
 
 /// Creates the schema in a new (missing or empty) file, in one transaction: a crash leaves
 /// either an empty file or a complete store. Run in the default rollback-journal mode;
-/// the caller switches to WAL afterwards.
-void create_schema(sqlite3* db, const std::string& path);
+/// the caller switches to WAL afterwards. `page_size`: bytes of an SQLite page.
+void create_schema(sqlite3* db, const std::string& path, int page_size);
 
 /// The file's schema version (PRAGMA user_version).
 int schema_version(sqlite3* db, const std::string& path);

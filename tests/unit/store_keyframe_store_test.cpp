@@ -668,3 +668,158 @@ TEST(KeyframeStore, DescriptorsAreReadBackOneByOneAndTheGraphWithRingKeysOnly) {
   raw_sql(path, "UPDATE nodes SET descriptor = NULL WHERE id = 1");
   expect_store_error([&] { store.load_descriptor({"s", 1}); }, path, "none stored");
 }
+
+/// Expects two load_graph results to hold the same records in the same order.
+void expect_same_graph_records(const KeyframeStore::GraphRecords& a,
+                               const KeyframeStore::GraphRecords& b) {
+  ASSERT_EQ(a.nodes.size(), b.nodes.size());
+  for (std::size_t i = 0; i < a.nodes.size(); ++i) {
+    const auto& x = a.nodes[i];
+    const auto& y = b.nodes[i];
+    ASSERT_EQ(x.node.key, y.node.key) << i;
+    EXPECT_EQ(x.node.stamp.nanoseconds, y.node.stamp.nanoseconds) << i;
+    EXPECT_EQ(x.node.odom_pose.matrix(), y.node.odom_pose.matrix()) << i;
+    EXPECT_EQ(x.node.pose.matrix(), y.node.pose.matrix()) << i;
+    EXPECT_EQ(x.node.covariance, y.node.covariance) << i;
+    EXPECT_EQ(x.node.descriptor.ring_key, y.node.descriptor.ring_key) << i;
+    EXPECT_EQ(x.node.descriptor.cells, y.node.descriptor.cells) << i;
+    EXPECT_EQ(x.has_descriptor, y.has_descriptor) << i;
+    EXPECT_EQ(x.has_pose, y.has_pose) << i;
+    EXPECT_EQ(x.frame, y.frame) << i;
+    ASSERT_EQ(x.map_pose.has_value(), y.map_pose.has_value()) << i;
+    if (x.map_pose) {
+      EXPECT_EQ(x.map_pose->matrix(), y.map_pose->matrix()) << i;
+    }
+  }
+  expect_same_edges(a.loops, b.loops);
+}
+
+TEST(KeyframeStore, TheGraphReadBySeveralConnectionsEqualsOneScan) {
+  const fs::path path = temp_dir() / "store.db";
+  // Three streams interleaved in arrival order, a descriptor for each keyframe, corrected poses
+  // for every third, enough rows for four readers (load_graph: 4096 rows a reader at least).
+  constexpr std::uint64_t kPerStream = 7000;
+  {
+    KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing);
+    std::vector<Keyframe> keyframes;
+    std::vector<mapping::PlaceDescriptor> descriptors;
+    std::vector<CorrectedPose> poses;
+    std::mt19937 rng(5);
+    for (std::uint64_t id = 0; id < kPerStream; ++id) {
+      for (const char* stream : {"b", "a", "c"}) {
+        keyframes.push_back(make_keyframe(stream, id, static_cast<std::int64_t>(id) * 100, 1));
+        mapping::PlaceDescriptor d;
+        d.rings = 2;
+        d.sectors = 2;
+        d.cells = {static_cast<std::uint8_t>(id % 256), 1, 2, static_cast<std::uint8_t>(stream[0])};
+        d.ring_key = {static_cast<float>(id), 0.25f};
+        descriptors.push_back(d);
+        if (id % 3 == 0) poses.push_back(corrected({stream, id}, random_pose(rng), "a"));
+      }
+    }
+    std::vector<const Keyframe*> to_store;
+    std::vector<const mapping::PlaceDescriptor*> described;
+    for (std::size_t i = 0; i < keyframes.size(); ++i) {
+      to_store.push_back(&keyframes[i]);
+      described.push_back(&descriptors[i]);
+    }
+    ASSERT_EQ(store.insert_keyframes(to_store, described), 3 * kPerStream);
+    store.replace_corrected_poses(poses);
+    store.replace_loop_edges({make_edge({"a", 0}, {"b", 9}, 1)});
+    std::vector<std::pair<KeyframeKey, std::optional<Eigen::Isometry3d>>> fused;
+    for (std::uint64_t id = 0; id < kPerStream; id += 5)
+      fused.push_back({{"c", id}, random_pose(rng)});
+    store.set_map_poses(fused);
+  }
+  StoreOptions one_reader;
+  one_reader.restart_readers = 1;
+  StoreOptions four_readers;
+  four_readers.restart_readers = 4;
+  const auto one =
+      KeyframeStore::open(path.string(), OpenMode::kMustExist, one_reader).load_graph();
+  ASSERT_EQ(one.nodes.size(), 3 * kPerStream);
+  EXPECT_EQ(one.readers, 1);
+  // Arrival order, as one scan of the rows reads them.
+  EXPECT_EQ(one.nodes[0].node.key, (KeyframeKey{"b", 0}));
+  EXPECT_EQ(one.nodes[4].node.key, (KeyframeKey{"a", 1}));
+  EXPECT_TRUE(one.nodes[0].has_pose);
+  EXPECT_FALSE(one.nodes[3].has_pose);
+  EXPECT_TRUE(one.nodes[2].map_pose.has_value());
+  EXPECT_FALSE(one.nodes[5].map_pose.has_value());
+  EXPECT_EQ(one.loops.size(), 1u);
+  {
+    KeyframeStore store = KeyframeStore::open(path.string(), OpenMode::kMustExist, four_readers);
+    const auto four = store.load_graph();
+    EXPECT_EQ(four.readers, 4);
+    expect_same_graph_records(four, one);
+    // A store opened read-only (another process may be writing it) is read in one scan.
+    const auto read_only =
+        KeyframeStore::open(path.string(), OpenMode::kReadOnly, four_readers).load_graph();
+    EXPECT_EQ(read_only.readers, 1);
+    expect_same_graph_records(read_only, one);
+    expect_same_graph_records(
+        store.load_graph(/*descriptor_cells=*/false),
+        KeyframeStore::open(path.string(), OpenMode::kMustExist, one_reader).load_graph(false));
+  }
+
+  // A corrupt row in a later reader's range is reported with its key, as by one scan.
+  raw_sql(path, "UPDATE nodes SET pose = x'0011' WHERE stream = 'c' AND id = 6000");
+  for (const StoreOptions& options : {one_reader, four_readers}) {
+    expect_store_error(
+        [&] { KeyframeStore::open(path.string(), OpenMode::kMustExist, options).load_graph(); },
+        path, "corrupt node row 'c'/6000: pose blob has 2 bytes, expected 96");
+  }
+
+  // Rows with a gap in their rowids are read by one scan, in the same order.
+  raw_sql(path, "DELETE FROM nodes WHERE stream = 'c' AND id = 6000");
+  const auto gap_one =
+      KeyframeStore::open(path.string(), OpenMode::kMustExist, one_reader).load_graph();
+  ASSERT_EQ(gap_one.nodes.size(), 3 * kPerStream - 1);
+  const auto gap_four =
+      KeyframeStore::open(path.string(), OpenMode::kMustExist, four_readers).load_graph();
+  EXPECT_EQ(gap_four.readers, 1);
+  expect_same_graph_records(gap_four, gap_one);
+}
+
+TEST(KeyframeStore, PageSizeIsSetAtCreationAndInvalidOptionsAreRefused) {
+  const fs::path dir = temp_dir();
+  // The page size field of the SQLite header (offset 16, big-endian; 1 means 65536).
+  auto page_size_field = [](const fs::path& path) {
+    const std::string bytes = read_bytes(path);
+    return (static_cast<unsigned char>(bytes.at(16)) << 8) |
+           static_cast<unsigned char>(bytes.at(17));
+  };
+  { KeyframeStore::open((dir / "default.db").string(), OpenMode::kCreateIfMissing); }
+  EXPECT_EQ(page_size_field(dir / "default.db"), 1);
+  StoreOptions small;
+  small.page_size = 4096;
+  {
+    KeyframeStore store =
+        KeyframeStore::open((dir / "small.db").string(), OpenMode::kCreateIfMissing, small);
+    store.insert_keyframe(make_keyframe("s", 0, 0, 300));
+  }
+  EXPECT_EQ(page_size_field(dir / "small.db"), 4096);
+  // An existing store keeps its page size.
+  {
+    KeyframeStore store = KeyframeStore::open((dir / "small.db").string(), OpenMode::kMustExist);
+    EXPECT_EQ(store.load_keyframes().size(), 1u);
+  }
+  EXPECT_EQ(page_size_field(dir / "small.db"), 4096);
+
+  const fs::path path = dir / "refused.db";
+  for (const int readers : {0, 65}) {
+    StoreOptions options;
+    options.restart_readers = readers;
+    expect_store_error(
+        [&] { KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing, options); }, path,
+        "restart_readers " + std::to_string(readers) + " is outside [1, 64]");
+  }
+  for (const int page_size : {256, 3000, 131072}) {
+    StoreOptions options;
+    options.page_size = page_size;
+    expect_store_error(
+        [&] { KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing, options); }, path,
+        "page_size " + std::to_string(page_size) + " is not a power of two in [512, 65536]");
+  }
+  EXPECT_FALSE(fs::exists(path));
+}

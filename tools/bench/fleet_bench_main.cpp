@@ -94,6 +94,8 @@ struct Options {
   bool keep_store = false;
   std::string reopen_only;
   std::string restart_glibc_tunables = kAggregatorGlibcTunables;
+  int store_page_size = store::StoreOptions{}.page_size;
+  int restart_readers = store::StoreOptions{}.restart_readers;
 };
 
 /// Vehicle v's drive seed: the generator's, and the drift check's that draws the same bias.
@@ -293,6 +295,10 @@ int main(int argc, char** argv) {
   app.add_option("--restart-glibc-tunables", o.restart_glibc_tunables,
                  "GLIBC_TUNABLES of the restart's process (default: the aggregator unit's; empty: "
                  "this process's environment)");
+  app.add_option("--store-page-size", o.store_page_size,
+                 "bytes of an SQLite page of the store the run creates (store.page_size_kb)");
+  app.add_option("--restart-readers", o.restart_readers,
+                 "connections reading the graph's rows at the restart (store.restart_readers)");
   app.add_option("--reopen-only", o.reopen_only,
                  "only open the existing --store as the aggregator does at start and write the "
                  "restart's time, peak RSS and graph digest to this JSON file (the bench runs "
@@ -336,11 +342,15 @@ int main(int argc, char** argv) {
   config.map_tiles.tiles.segment_keyframes = o.tile_segment_keyframes;
   core_options.tiles = config.map_tiles.tiles;
   core_options.tile_cache_bytes = static_cast<std::size_t>(config.map_tiles.cache_mb) << 20;
+  store::StoreOptions store_options;
+  store_options.page_size = o.store_page_size;
+  store_options.restart_readers = o.restart_readers;
 
   if (!o.reopen_only.empty()) {
     RestartReport report;
     const auto r0 = Clock::now();
-    AggregatorCore reopened(o.store, store::OpenMode::kMustExist, mapper, {}, {}, core_options);
+    AggregatorCore reopened(o.store, store::OpenMode::kMustExist, mapper, store_options, {},
+                            core_options);
     report.restart_s = std::chrono::duration<double>(Clock::now() - r0).count();
     report.peak_rss_mb = image_peak_rss_mb();
     report.keyframes = reopened.mapper().graph().size();
@@ -437,7 +447,8 @@ int main(int argc, char** argv) {
   std::string stop_reason;  // why the feeding stopped before the target ("" if it did not)
   double feed_wall_s = 0.0;
   {
-    AggregatorCore core(o.store, store::OpenMode::kCreateIfMissing, mapper, {}, {}, core_options);
+    AggregatorCore core(o.store, store::OpenMode::kCreateIfMissing, mapper, store_options, {},
+                        core_options);
     MappingWorker worker(core, queue, sink, config);
     std::size_t next_report = 10000;
     IngestCpu last_in;
@@ -606,7 +617,8 @@ int main(int argc, char** argv) {
                restart.restart_s, restart.peak_rss_mb, restart_identical ? "identical" : "DIFFERS");
 
   // The accuracy figures from the reopened store, in this process.
-  AggregatorCore reopened(o.store, store::OpenMode::kMustExist, mapper, {}, {}, core_options);
+  AggregatorCore reopened(o.store, store::OpenMode::kMustExist, mapper, store_options, {},
+                          core_options);
 
   // ATE of every keyframe in the map frame (vehicle 0's odometry frame = its first pose).
   const mapping::Mapper& m = reopened.mapper();
@@ -773,6 +785,8 @@ int main(int argc, char** argv) {
       {"store_mb", file_mb(o.store)},
       {"restart_s", restart.restart_s},
       {"restart_glibc_tunables", o.restart_glibc_tunables},
+      {"store_page_size", o.store_page_size},
+      {"restart_readers", o.restart_readers},
       {"restart_identical", restart_identical},
       {"wrong_loops", wrong_loops},
       {"loops_dropped_inconsistent", final_stats.inconsistent},

@@ -55,6 +55,10 @@ struct StoreConfig {
   /// Megabytes of keyframe distributions kept in memory (the mapper's DistributionCache); the
   /// rest is read back from the store when a verification or the map needs it.
   int distribution_cache_mb = 512;
+  /// Connections reading the graph's rows side by side at a restart (StoreOptions).
+  int restart_readers = 4;
+  /// KiB of an SQLite page when the store is created (1 to 64, a power of two; StoreOptions).
+  int page_size_kb = 64;
 };
 
 struct IngestConfig {

@@ -51,6 +51,16 @@ struct StoreOptions {
   bool synchronous_full = false;
   /// How long a write waits for another connection's transaction before failing.
   int busy_timeout_ms = 5000;
+  /// Connections that read the nodes table side by side at a restart (load_graph), each a
+  /// range of its rows: on a cold page cache the rows lie scattered through the keyframes'
+  /// large file, and reads in flight together finish sooner than one after another. Used only
+  /// by a store opened for writing (the one writer: no commit can land between the ranges).
+  int restart_readers = 4;
+  /// Bytes of an SQLite page in a store this call creates (a power of two in [512, 65536]; an
+  /// existing store keeps its own). Large pages: the graph's small rows, interleaved in the
+  /// file with the keyframes' large ones, are read at a restart in far fewer requests (the
+  /// request count, not the bytes, bounds a cold read: docs/benchmarks.md).
+  int page_size = 65536;
 };
 
 /// A keyframe's latest optimised pose, as the mapper reports it.
@@ -130,6 +140,8 @@ class KeyframeStore {
     std::vector<mapping::LoopEdge> loops;
     /// The loops between groups waiting for their merge's confirmation, oldest first.
     std::vector<mapping::LoopEdge> pending_merges;
+    /// Connections that read the nodes (StoreOptions::restart_readers, or 1).
+    int readers = 1;
   };
   /// `descriptor_cells` false: each node's descriptor keeps its ring key only (a mapper that
   /// reads the cells back with load_descriptor, Mapper::keep_descriptor_cells_outside).

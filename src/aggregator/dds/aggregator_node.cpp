@@ -101,6 +101,8 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
       relay_(std::chrono::milliseconds(std::llround(config_.publish.map_frame_settle_s * 1000.0))) {
   store::StoreOptions options;
   options.synchronous_full = config_.store.synchronous_full;
+  options.restart_readers = config_.store.restart_readers;
+  options.page_size = config_.store.page_size_kb * 1024;
   CoreOptions core_options;
   core_options.distribution_cache_bytes =
       static_cast<std::size_t>(config_.store.distribution_cache_mb) << 20;
