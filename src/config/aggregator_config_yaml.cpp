@@ -46,6 +46,7 @@ AggregatorConfig aggregator_config_from_yaml(const YAML::Node& node) {
     store.read("synchronous_full", config.store.synchronous_full);
     store.read_range("distribution_cache_mb", config.store.distribution_cache_mb, 1, 1'000'000);
     store.read_range("restart_readers", config.store.restart_readers, 1, 64);
+    store.read_range("sqlite_cache_mb", config.store.sqlite_cache_mb, 1, 65536);
     store.read_enum("page_size_kb", config.store.page_size_kb,
                     {{"1", 1}, {"2", 2}, {"4", 4}, {"8", 8}, {"16", 16}, {"32", 32}, {"64", 64}});
     store.reject_unknown();

@@ -61,6 +61,8 @@ struct KeyframeStore::Impl {
   int version = KeyframeStore::kSchemaVersion;
   /// StoreOptions::restart_readers.
   int restart_readers = 1;
+  /// PRAGMA cache_size of StoreOptions::sqlite_cache_mb, for every connection.
+  std::string cache_size_pragma;
 
   /// A transaction of its own unless a Batch is open.
   std::unique_ptr<Transaction> transaction() {
@@ -144,6 +146,10 @@ KeyframeStore KeyframeStore::open(const std::string& path, OpenMode mode,
     throw StoreError(path, "page_size " + std::to_string(options.page_size) +
                                " is not a power of two in [512, 65536]");
   }
+  if (options.sqlite_cache_mb < 1 || options.sqlite_cache_mb > 65536) {
+    throw StoreError(path, "sqlite_cache_mb " + std::to_string(options.sqlite_cache_mb) +
+                               " is outside [1, 65536]");
+  }
   if (options.restart_readers < 1 || options.restart_readers > 64) {
     throw StoreError(
         path, "restart_readers " + std::to_string(options.restart_readers) + " is outside [1, 64]");
@@ -176,6 +182,8 @@ KeyframeStore KeyframeStore::open(const std::string& path, OpenMode mode,
   impl->path = path;
   impl->read_only = mode == OpenMode::kReadOnly;
   impl->restart_readers = options.restart_readers;
+  impl->cache_size_pragma =
+      "PRAGMA cache_size = -" + std::to_string(options.sqlite_cache_mb * 1024);
   const int flags = impl->read_only ? SQLITE_OPEN_READONLY
                                     : SQLITE_OPEN_READWRITE | (create ? SQLITE_OPEN_CREATE : 0);
   impl->db = open_connection(path, flags);
@@ -200,6 +208,7 @@ KeyframeStore KeyframeStore::open(const std::string& path, OpenMode mode,
   // only a power loss may lose the last commits since a checkpoint. FULL fsyncs every commit.
   exec(db, path,
        options.synchronous_full ? "PRAGMA synchronous = FULL" : "PRAGMA synchronous = NORMAL");
+  exec(db, path, impl->cache_size_pragma.c_str());
 
   // received_seq numbers keyframes in arrival order; computed in the statement so that
   // several writers (each in its own transaction) never reuse a number.
@@ -461,6 +470,7 @@ KeyframeStore::GraphRecords KeyframeStore::load_graph(bool descriptor_cells) con
           // A connection of its own: SQLite connections are not shared between threads here
           // (SQLITE_OPEN_NOMUTEX).
           Connection db = open_connection(im.path, SQLITE_OPEN_READONLY);
+          exec(db.get(), im.path, im.cache_size_pragma.c_str());
           scan_nodes(db.get(), im.path, im.version, from, to,
                      [&](std::int64_t rowid, sqlite3_stmt* row) {
                        if (rowid < from || rowid > to)

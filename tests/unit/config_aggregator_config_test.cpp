@@ -44,7 +44,7 @@ TEST(AggregatorConfig, ReadsEverySection) {
   const AggregatorConfig c = aggregator_config_from_yaml(YAML::Load(R"(
 dds: {domain: 7, profile: shm}
 topics: {map_patches: rt/x/patches, keyframe_poses: rt/x/poses, map_summary: rt/x/sum, status: rt/x/st}
-store: {path: /tmp/a.db, synchronous_full: true, restart_readers: 2, page_size_kb: 4}
+store: {path: /tmp/a.db, synchronous_full: true, restart_readers: 2, page_size_kb: 4, sqlite_cache_mb: 8}
 ingest: {queue_capacity: 10, max_batch: 3, exclusive_odometry: true}
 publish: {poses_period_s: 0.5, summary_period_s: 2, summary_max_means: 0, status_period_s: 0.25}
 mapper: {map_voxel_size: 2.0, pose_graph: {max_iterations: 7}}
@@ -57,6 +57,7 @@ log_level: debug
   EXPECT_TRUE(c.store.synchronous_full);
   EXPECT_EQ(c.store.restart_readers, 2);
   EXPECT_EQ(c.store.page_size_kb, 4);
+  EXPECT_EQ(c.store.sqlite_cache_mb, 8);
   EXPECT_EQ(c.ingest.max_batch, 3);
   EXPECT_TRUE(c.ingest.exclusive_odometry);
   EXPECT_EQ(c.publish.summary_max_means, 0);
@@ -97,6 +98,7 @@ TEST(AggregatorConfig, ErrorsNameTheKey) {
   expect_error("store: {path: ''}", "store.path: must not be empty");
   expect_error("store: {pth: x}", "store.pth: unknown key");
   expect_error("store: {restart_readers: 0}", "store.restart_readers: 0 is out of range");
+  expect_error("store: {sqlite_cache_mb: 0}", "store.sqlite_cache_mb: 0 is out of range");
   expect_error("store: {page_size_kb: 3}", "store.page_size_kb: '3' is not one of");
   expect_error("ingest: {max_batch: 0}", "ingest.max_batch: 0 is out of range");
   expect_error("publish: {status_period_s: abc}", "publish.status_period_s: cannot read 'abc'");

@@ -125,6 +125,7 @@ TEST(ConfigShippedDefaults, AggregatorDdsOnlyConfigBehavesAsTheShippedFile) {
   EXPECT_EQ(shipped.store.distribution_cache_mb, minimal.store.distribution_cache_mb);
   EXPECT_EQ(shipped.store.restart_readers, minimal.store.restart_readers);
   EXPECT_EQ(shipped.store.page_size_kb, minimal.store.page_size_kb);
+  EXPECT_EQ(shipped.store.sqlite_cache_mb, minimal.store.sqlite_cache_mb);
   EXPECT_EQ(shipped.ingest.queue_capacity, minimal.ingest.queue_capacity);
   EXPECT_EQ(shipped.ingest.max_batch, minimal.ingest.max_batch);
   EXPECT_EQ(shipped.ingest.exclusive_odometry, minimal.ingest.exclusive_odometry);

@@ -814,6 +814,13 @@ TEST(KeyframeStore, PageSizeIsSetAtCreationAndInvalidOptionsAreRefused) {
         [&] { KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing, options); }, path,
         "restart_readers " + std::to_string(readers) + " is outside [1, 64]");
   }
+  for (const int cache_mb : {0, 65537}) {
+    StoreOptions options;
+    options.sqlite_cache_mb = cache_mb;
+    expect_store_error(
+        [&] { KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing, options); }, path,
+        "sqlite_cache_mb " + std::to_string(cache_mb) + " is outside [1, 65536]");
+  }
   for (const int page_size : {256, 3000, 131072}) {
     StoreOptions options;
     options.page_size = page_size;

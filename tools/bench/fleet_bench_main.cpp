@@ -96,6 +96,7 @@ struct Options {
   std::string restart_glibc_tunables = kAggregatorGlibcTunables;
   int store_page_size = store::StoreOptions{}.page_size;
   int restart_readers = store::StoreOptions{}.restart_readers;
+  int sqlite_cache_mb = store::StoreOptions{}.sqlite_cache_mb;
 };
 
 /// Vehicle v's drive seed: the generator's, and the drift check's that draws the same bias.
@@ -299,6 +300,8 @@ int main(int argc, char** argv) {
                  "bytes of an SQLite page of the store the run creates (store.page_size_kb)");
   app.add_option("--restart-readers", o.restart_readers,
                  "connections reading the graph's rows at the restart (store.restart_readers)");
+  app.add_option("--sqlite-cache-mb", o.sqlite_cache_mb,
+                 "MiB of SQLite's page cache per connection (store.sqlite_cache_mb)");
   app.add_option("--reopen-only", o.reopen_only,
                  "only open the existing --store as the aggregator does at start and write the "
                  "restart's time, peak RSS and graph digest to this JSON file (the bench runs "
@@ -345,6 +348,7 @@ int main(int argc, char** argv) {
   store::StoreOptions store_options;
   store_options.page_size = o.store_page_size;
   store_options.restart_readers = o.restart_readers;
+  store_options.sqlite_cache_mb = o.sqlite_cache_mb;
 
   if (!o.reopen_only.empty()) {
     RestartReport report;
@@ -787,6 +791,7 @@ int main(int argc, char** argv) {
       {"restart_glibc_tunables", o.restart_glibc_tunables},
       {"store_page_size", o.store_page_size},
       {"restart_readers", o.restart_readers},
+      {"sqlite_cache_mb", o.sqlite_cache_mb},
       {"restart_identical", restart_identical},
       {"wrong_loops", wrong_loops},
       {"loops_dropped_inconsistent", final_stats.inconsistent},

@@ -59,6 +59,8 @@ struct StoreConfig {
   int restart_readers = 4;
   /// KiB of an SQLite page when the store is created (1 to 64, a power of two; StoreOptions).
   int page_size_kb = 64;
+  /// MiB of SQLite's page cache per connection (StoreOptions).
+  int sqlite_cache_mb = 64;
 };
 
 struct IngestConfig {

@@ -61,6 +61,10 @@ struct StoreOptions {
   /// file with the keyframes' large ones, are read at a restart in far fewer requests (the
   /// request count, not the bytes, bounds a cold read: docs/benchmarks.md).
   int page_size = 65536;
+  /// MiB of SQLite's page cache per connection (PRAGMA cache_size). SQLite's default, 2 MB, is
+  /// 31 pages of 64 KiB: too few for a restart's lookups of corrected poses across ~100
+  /// vehicles' rows, each miss then a 64 KiB copy from the OS (docs/benchmarks.md).
+  int sqlite_cache_mb = 64;
 };
 
 /// A keyframe's latest optimised pose, as the mapper reports it.

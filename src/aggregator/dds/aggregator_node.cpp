@@ -103,6 +103,7 @@ AggregatorNode::AggregatorNode(AggregatorConfig config, const AggregatorCore::Pr
   options.synchronous_full = config_.store.synchronous_full;
   options.restart_readers = config_.store.restart_readers;
   options.page_size = config_.store.page_size_kb * 1024;
+  options.sqlite_cache_mb = config_.store.sqlite_cache_mb;
   CoreOptions core_options;
   core_options.distribution_cache_bytes =
       static_cast<std::size_t>(config_.store.distribution_cache_mb) << 20;
