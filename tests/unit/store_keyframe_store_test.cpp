@@ -807,26 +807,25 @@ TEST(KeyframeStore, PageSizeIsSetAtCreationAndInvalidOptionsAreRefused) {
   EXPECT_EQ(page_size_field(dir / "small.db"), 4096);
 
   const fs::path path = dir / "refused.db";
-  for (const int readers : {0, 65}) {
-    StoreOptions options;
-    options.restart_readers = readers;
-    expect_store_error(
-        [&] { KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing, options); }, path,
-        "restart_readers " + std::to_string(readers) + " is outside [1, 64]");
-  }
-  for (const int cache_mb : {0, 65537}) {
-    StoreOptions options;
-    options.sqlite_cache_mb = cache_mb;
-    expect_store_error(
-        [&] { KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing, options); }, path,
-        "sqlite_cache_mb " + std::to_string(cache_mb) + " is outside [1, 65536]");
-  }
-  for (const int page_size : {256, 3000, 131072}) {
-    StoreOptions options;
-    options.page_size = page_size;
-    expect_store_error(
-        [&] { KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing, options); }, path,
-        "page_size " + std::to_string(page_size) + " is not a power of two in [512, 65536]");
-  }
+  // Each invalid value of one option (set by `set`) is refused with `reason` before any file.
+  auto expect_refused = [&](std::initializer_list<int> values, void (*set)(StoreOptions&, int),
+                            const std::string& name, const std::string& reason) {
+    for (const int value : values) {
+      StoreOptions options;
+      set(options, value);
+      expect_store_error(
+          [&] { KeyframeStore::open(path.string(), OpenMode::kCreateIfMissing, options); }, path,
+          name + " " + std::to_string(value) + reason);
+    }
+  };
+  expect_refused(
+      {0, 65}, [](StoreOptions& o, int v) { o.restart_readers = v; }, "restart_readers",
+      " is outside [1, 64]");
+  expect_refused(
+      {0, 65537}, [](StoreOptions& o, int v) { o.sqlite_cache_mb = v; }, "sqlite_cache_mb",
+      " is outside [1, 65536]");
+  expect_refused(
+      {256, 3000, 131072}, [](StoreOptions& o, int v) { o.page_size = v; }, "page_size",
+      " is not a power of two in [512, 65536]");
   EXPECT_FALSE(fs::exists(path));
 }
