@@ -164,6 +164,7 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node, const TrackerConf
   recovery.read("enabled", rec.enabled);
   recovery.read("trigger_ratio", rec.trigger_ratio);
   read_numbers(recovery, "motion_scales", rec.motion_scales);
+  recovery.read("ranked_starts", rec.ranked_starts);
   read_numbers(recovery, "first_speeds", rec.first_speeds);
   recovery.read("first_speeds_max_travel", rec.first_speeds_max_travel);
   recovery.read("min_gain", rec.min_gain);
@@ -284,6 +285,7 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "enabled" << YAML::Value << c.recovery.enabled;
   out << YAML::Key << "trigger_ratio" << YAML::Value << c.recovery.trigger_ratio;
   out << YAML::Key << "motion_scales" << YAML::Value << YAML::Flow << c.recovery.motion_scales;
+  out << YAML::Key << "ranked_starts" << YAML::Value << c.recovery.ranked_starts;
   out << YAML::Key << "first_speeds" << YAML::Value << YAML::Flow << c.recovery.first_speeds;
   out << YAML::Key << "first_speeds_max_travel" << YAML::Value
       << c.recovery.first_speeds_max_travel;

@@ -196,6 +196,44 @@ Tracker::RegistrationStart Tracker::registration_start(const PointCloud& scan, d
   return chosen;
 }
 
+std::vector<Eigen::Isometry3d> Tracker::retry_starts(const std::vector<Distribution>& source,
+                                                     const Eigen::Isometry3d& predicted,
+                                                     double motion_scale, double& spent_ms) const {
+  const RecoveryConfig& recovery = config_.recovery;
+  std::vector<Eigen::Isometry3d> starts;
+  starts.reserve(recovery.motion_scales.size());
+  for (double s : recovery.motion_scales)
+    starts.push_back(pose_ * scaled_motion(velocity_, s * motion_scale));
+  const auto kept = static_cast<std::size_t>(recovery.ranked_starts);
+  if (kept == 0 || starts.size() <= kept) return starts;
+  // Ranked as the second scan's starts at speed are: by the correlative score of the scan's
+  // distribution means on the map, blurred by the widest gap between neighbouring starts (the
+  // prediction, scale 1, among them), so that a start between two grid cells is not missed.
+  const auto start_time = std::chrono::steady_clock::now();
+  const double step = (pose_.inverse() * predicted).translation().norm();
+  std::vector<double> scales = recovery.motion_scales;
+  scales.push_back(1.0);
+  std::sort(scales.begin(), scales.end());
+  double widest_gap = 0.0;
+  for (std::size_t i = 1; i < scales.size(); ++i)
+    widest_gap = std::max(widest_gap, (scales[i] - scales[i - 1]) * step);
+  const PoseScorer scorer(map_, std::max(widest_gap, 0.1 * map_.voxel_size()));
+  const std::vector<Eigen::Vector3d> points =
+      search_points(source, predicted.linear(), recovery.global_search.max_sources);
+  std::vector<std::pair<double, std::size_t>> ranked;
+  ranked.reserve(starts.size());
+  for (std::size_t i = 0; i < starts.size(); ++i)
+    ranked.emplace_back(-scorer.score(points, starts[i]), i);
+  // Highest score first; equal scores keep the configured order.
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<Eigen::Isometry3d> best;
+  best.reserve(starts.size());
+  for (const auto& r : ranked) best.push_back(starts[r.second]);
+  spent_ms += elapsed_ms(start_time);
+  return best;
+}
+
 ScanRegistration Tracker::register_from(const PointCloud& scan, RegistrationStart& start) {
   if (start.registered) return std::move(*start.registered);
   return register_scan(scan, voxelizer_, map_, *search_, start.pose, config_.registration);
@@ -223,10 +261,16 @@ FrameResult Tracker::process_scaled(const PointCloud& raw, double motion_scale,
       // voxeliser's grid voxels must be those of the kept registration (the map merges them).
       frame.retried = true;
       const double predicted_share = share;
-      for (double s : recovery.motion_scales) {
+      const std::vector<Eigen::Isometry3d> other_starts =
+          retry_starts(registration.source, predicted, motion_scale, registration.register_ms);
+      for (std::size_t k = 0; k < other_starts.size(); ++k) {
+        // Ranked: the best ranked_starts first; the rest only if none of them was kept.
+        if (recovery.ranked_starts > 0 && k >= static_cast<std::size_t>(recovery.ranked_starts) &&
+            frame.recovered)
+          break;
         ScanRegistration other =
-            register_scan(scan, voxelizer_, map_, *search_,
-                          pose_ * scaled_motion(velocity_, s * motion_scale), config_.registration);
+            register_scan(scan, voxelizer_, map_, *search_, other_starts[k], config_.registration);
+        ++frame.retry_registrations;
         const double other_share = other.result.valid ? other.inlier_share() : 0.0;
         registration.voxelize_ms += other.voxelize_ms;
         registration.register_ms += other.register_ms;

@@ -93,6 +93,8 @@ void validate(const TrackerConfig& c) {
           static_cast<double>(rec.motion_scales.size()), "at most 16 starts");
   for (double s : rec.motion_scales)
     require(std::isfinite(s) && s >= 0.0 && s <= 10.0, "recovery.motion_scales", s, "each 0 to 10");
+  require(rec.ranked_starts >= 0 && rec.ranked_starts <= 16, "recovery.ranked_starts",
+          rec.ranked_starts, "0 (every start) to 16");
   require(rec.first_speeds.size() <= 16, "recovery.first_speeds",
           static_cast<double>(rec.first_speeds.size()), "at most 16 starts");
   for (double v : rec.first_speeds)

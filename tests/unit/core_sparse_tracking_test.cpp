@@ -306,6 +306,38 @@ TEST(SparseTracking, AnotherStartMustFitClearlyBetterThanThePrediction) {
   EXPECT_EQ(recovered, 0);
 }
 
+TEST(SparseTracking, OnlyTheBestRankedRetryStartIsRegistered) {
+  // recovery.ranked_starts: the retry's starts are ranked by their correlative score against
+  // the map and registered best first; once the best is kept, the others are not registered.
+  // With starts that cannot help listed first (standing still, 8x and 10x the motion: 3 m or
+  // more from the 3 m and 4 m steps that follow 1 m ones), the ones that can (3x, 4x) are
+  // ranked first: every recovered frame made one registration, where all five are made in the
+  // configured order. The global search is off, so the retries alone recover the drops.
+  TrackerConfig config = recovery_config();
+  config.recovery.global_search.trigger_ratio = 0.0;
+  config.recovery.motion_scales = {0.0, 10.0, 8.0, 3.0, 4.0};
+  config.recovery.ranked_starts = 1;
+  const auto truth = drive(dropped_frames());
+  std::vector<FrameResult> ranked;
+  EXPECT_LT(worst_step_error(truth, config, &ranked), 0.15);
+  int recovered = 0;
+  for (const FrameResult& f : ranked) {
+    if (!f.recovered) continue;
+    ++recovered;
+    EXPECT_EQ(f.retry_registrations, 1) << "the best-ranked start was not the one kept";
+  }
+  EXPECT_GT(recovered, 0) << "the drops were absorbed without a retry: nothing was ranked";
+  TrackerConfig unranked = config;
+  unranked.recovery.ranked_starts = 0;
+  std::vector<FrameResult> all;
+  EXPECT_LT(worst_step_error(truth, unranked, &all), 0.15);
+  for (const FrameResult& f : all) {
+    if (f.retried) {
+      EXPECT_EQ(f.retry_registrations, 5);
+    }
+  }
+}
+
 TEST(SparseTracking, AStartAtSpeedIsFoundFromTheFirstSpeeds) {
   // A stream that starts at 40 m/s (4 m between untimed scans): the second scan, with no
   // motion known, is registered from the first pose and from starts along x at

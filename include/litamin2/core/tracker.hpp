@@ -16,6 +16,7 @@
 #include <Eigen/Geometry>
 #include <memory>
 #include <optional>
+#include <vector>
 
 namespace litamin2 {
 
@@ -60,6 +61,8 @@ struct FrameResult {
   /// them fitted better than the prediction's.
   bool retried = false;
   bool recovered = false;
+  /// Registrations from the other starts that the retry made (RecoveryConfig::ranked_starts).
+  int retry_registrations = 0;
   /// A break was confirmed (RecoveryConfig::reset_ratio): the previous scan fitted nothing, and
   /// this one fits the map restarted from it, which replaced the map; this scan is registered
   /// to it and added to it.
@@ -179,6 +182,13 @@ class Tracker {
   /// registrations' time to `spent`.
   RegistrationStart registration_start(const PointCloud& scan, double motion_scale,
                                        double interval_s, StageTimes& spent);
+  /// The recovery's other starts for a scan predicted at `predicted` (motion_scales applied to
+  /// the last motion scaled by `motion_scale`): in the configured order, or with ranked_starts
+  /// in the order of their score against the map, best first, given the scan's distributions
+  /// `source` (sensor frame). Adds the ranking's time to `spent_ms`.
+  std::vector<Eigen::Isometry3d> retry_starts(const std::vector<Distribution>& source,
+                                              const Eigen::Isometry3d& predicted,
+                                              double motion_scale, double& spent_ms) const;
   /// The registration from `start`: the one registration_start made, or a new one.
   ScanRegistration register_from(const PointCloud& scan, RegistrationStart& start);
   /// Before the first scan: applies `sensor: auto`'s preset, then the pending seed (if any).

@@ -56,6 +56,14 @@ struct RecoveryConfig {
   /// The other starts: the constant-velocity motion scaled by these factors (0: standing still,
   /// 2: one frame dropped).
   std::vector<double> motion_scales = {0.0, 0.5, 1.5, 2.0, 3.0};
+  /// The starts are ranked by the correlative score of the scan against the map (PoseScorer:
+  /// up to global_search.max_sources scan distribution means, blurred by the widest gap between
+  /// neighbouring starts, as the second scan's starts at speed are ranked) and registered best
+  /// first; after the best ranked_starts, the others are registered only if none of those was
+  /// kept. A registration from a start far from the motion iterates to its caps, so registering
+  /// every start made a retried frame cost several frames' time (docs/accuracy.md "Retries
+  /// ranked by their score"). 0: every start is registered, in the configured order.
+  int ranked_starts = 1;
   /// A registration from another start replaces the prediction's only if its inlier share is
   /// at least this multiple of the prediction's: where the scene constrains the motion weakly
   /// (a highway, a corridor) the starts fit almost alike, and the prediction is the better
