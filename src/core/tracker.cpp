@@ -227,11 +227,11 @@ std::vector<Eigen::Isometry3d> Tracker::retry_starts(const std::vector<Distribut
   // Highest score first; equal scores keep the configured order.
   std::stable_sort(ranked.begin(), ranked.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::vector<Eigen::Isometry3d> best;
-  best.reserve(starts.size());
-  for (const auto& r : ranked) best.push_back(starts[r.second]);
+  std::vector<Eigen::Isometry3d> best_first;
+  best_first.reserve(starts.size());
+  for (const auto& r : ranked) best_first.push_back(starts[r.second]);
   spent_ms += elapsed_ms(start_time);
-  return best;
+  return best_first;
 }
 
 ScanRegistration Tracker::register_from(const PointCloud& scan, RegistrationStart& start) {
