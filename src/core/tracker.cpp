@@ -15,6 +15,17 @@
 namespace litamin2 {
 namespace {
 
+/// Blur of the correlative score that ranks starts placed at `offsets` times `unit` metres
+/// along the motion: the widest gap between neighbouring starts, so that the motion between two
+/// of them is not missed, and at least a tenth of a voxel.
+double start_blur(std::vector<double> offsets, double unit, double voxel_size) {
+  std::sort(offsets.begin(), offsets.end());
+  double widest_gap = 0.0;
+  for (std::size_t i = 1; i < offsets.size(); ++i)
+    widest_gap = std::max(widest_gap, (offsets[i] - offsets[i - 1]) * unit);
+  return std::max(widest_gap, 0.1 * voxel_size);
+}
+
 double rotation_angle(const Eigen::Matrix3d& rotation) {
   return Eigen::AngleAxisd(rotation).angle();
 }
@@ -160,12 +171,8 @@ Tracker::RegistrationStart Tracker::registration_start(const PointCloud& scan, d
   // blurred by the widest gap between neighbouring starts; only the best is registered.
   std::vector<double> travel = {0.0};
   for (double speed : recovery.first_speeds) travel.push_back(speed * interval_s);
-  std::sort(travel.begin(), travel.end());
-  double widest_gap = 0.0;
-  for (std::size_t i = 1; i < travel.size(); ++i)
-    widest_gap = std::max(widest_gap, travel[i] - travel[i - 1]);
   const auto start_time = std::chrono::steady_clock::now();
-  const PoseScorer scorer(map_, std::max(widest_gap, 0.1 * map_.voxel_size()));
+  const PoseScorer scorer(map_, start_blur(travel, 1.0, map_.voxel_size()));
   const std::vector<Eigen::Vector3d> points =
       search_points(rest.source, at_rest.linear(), recovery.global_search.max_sources);
   Eigen::Isometry3d best_start = at_rest;
@@ -208,16 +215,12 @@ std::vector<Eigen::Isometry3d> Tracker::retry_starts(const std::vector<Distribut
   if (kept == 0 || starts.size() <= kept) return starts;
   // Ranked as the second scan's starts at speed are: by the correlative score of the scan's
   // distribution means on the map, blurred by the widest gap between neighbouring starts (the
-  // prediction, scale 1, among them), so that a start between two grid cells is not missed.
+  // prediction, scale 1, among them).
   const auto start_time = std::chrono::steady_clock::now();
   const double step = (pose_.inverse() * predicted).translation().norm();
   std::vector<double> scales = recovery.motion_scales;
   scales.push_back(1.0);
-  std::sort(scales.begin(), scales.end());
-  double widest_gap = 0.0;
-  for (std::size_t i = 1; i < scales.size(); ++i)
-    widest_gap = std::max(widest_gap, (scales[i] - scales[i - 1]) * step);
-  const PoseScorer scorer(map_, std::max(widest_gap, 0.1 * map_.voxel_size()));
+  const PoseScorer scorer(map_, start_blur(std::move(scales), step, map_.voxel_size()));
   const std::vector<Eigen::Vector3d> points =
       search_points(source, predicted.linear(), recovery.global_search.max_sources);
   std::vector<std::pair<double, std::size_t>> ranked;
