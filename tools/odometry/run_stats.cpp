@@ -26,6 +26,7 @@ void RunStats::add(const FrameResult& frame) {
   regrid_stops_ += frame.regrid_stopped ? 1 : 0;
   retries_ += frame.retried ? 1 : 0;
   recoveries_ += frame.recovered ? 1 : 0;
+  retry_registrations_ += static_cast<std::size_t>(frame.retry_registrations);
   map_resets_ += frame.map_reset ? 1 : 0;
   pose_searches_ += frame.pose_searched ? 1 : 0;
   poses_found_ += frame.pose_found ? 1 : 0;
@@ -87,6 +88,7 @@ std::string RunStats::to_json(const std::string& mode, const std::string& sensor
                 {"regrid_stops", regrid_stops_},
                 {"recovery_retries", retries_},
                 {"recovery_kept", recoveries_},
+                {"recovery_registrations", retry_registrations_},
                 {"map_resets", map_resets_},
                 {"global_searches", pose_searches_},
                 {"global_search_kept", poses_found_},

@@ -48,6 +48,7 @@ class RunStats {
   std::size_t regrid_stops_ = 0;
   std::size_t retries_ = 0;
   std::size_t recoveries_ = 0;
+  std::size_t retry_registrations_ = 0;
   std::size_t map_resets_ = 0;
   std::size_t pose_searches_ = 0;
   std::size_t poses_found_ = 0;
