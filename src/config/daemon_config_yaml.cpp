@@ -248,6 +248,17 @@ DaemonConfig daemon_config_from_yaml(const YAML::Node& node) {
     scheduling.reject_unknown();
   }
   root.read_range("shutdown_timeout_s", config.shutdown_timeout_s, 0.0, 60.0);
+  {
+    YamlSection memory(root.child("memory"), "memory");
+    const YAML::Node prefault = memory.child("prefault_mb");
+    if (prefault && prefault.IsScalar() && prefault.Scalar() == "auto") {
+      config.memory.prefault_mb.reset();
+    } else {
+      int mib = 0;
+      if (memory.read("prefault_mb", mib)) config.memory.prefault_mb = mib;
+    }
+    memory.reject_unknown();
+  }
 
   {
     YamlSection outputs(root.child("outputs"), "outputs");

@@ -27,6 +27,19 @@ void check_frame(const std::string& name, const std::string& path) {
 
 }  // namespace
 
+int prefault_auto_mb(const DaemonConfig& config) {
+  constexpr std::size_t kBaseMiB = 64;
+  constexpr std::size_t kPerStreamMiB = 32;
+  constexpr std::size_t kAutoMaxMiB = 1024;
+  const std::size_t streams = std::max<std::size_t>(1, config.streams.size());
+  return static_cast<int>(std::min(kBaseMiB + kPerStreamMiB * streams, kAutoMaxMiB));
+}
+
+std::size_t prefault_bytes(const DaemonConfig& config) {
+  const int mib = config.memory.prefault_mb ? *config.memory.prefault_mb : prefault_auto_mb(config);
+  return static_cast<std::size_t>(std::max(mib, 0)) << 20;
+}
+
 void validate(const DaemonConfig& config) {
   std::set<std::string> ids, topics;
   for (std::size_t i = 0; i < config.streams.size(); ++i) {
@@ -107,6 +120,10 @@ void validate(const DaemonConfig& config) {
     throw ConfigError("log_level: '" + config.log_level + "' is not a log level");
   if (config.streams.empty() && !config.discovery.enabled)
     throw ConfigError("streams: no streams configured and discovery.enabled is false");
+  if (config.memory.prefault_mb &&
+      (*config.memory.prefault_mb < 0 || *config.memory.prefault_mb > kMaxPrefaultMiB))
+    throw ConfigError("memory.prefault_mb: " + std::to_string(*config.memory.prefault_mb) +
+                      " is out of range [0, " + std::to_string(kMaxPrefaultMiB) + "]");
   if (!config.member_id.empty())
     if (const auto why = member_id_error(config.member_id))
       throw ConfigError("member_id: '" + config.member_id + "' is not a member id: " + *why);

@@ -552,3 +552,34 @@ TEST(DaemonConfig, WorkerSchedulingErrors) {
   EXPECT_EQ(error_of(head + "scheduling: fifo"),
             "scheduling: expected a mapping of keys to values, got 'fifo'");
 }
+
+TEST(DaemonConfig, HeapPrefaultIsAutoANumberOrOff) {
+  const std::string discovering = "discovery: {enabled: true}\n";
+  // Absent and "auto": 64 MiB and 32 a configured stream, one for a discovering daemon.
+  EXPECT_FALSE(parse(discovering).memory.prefault_mb.has_value());
+  EXPECT_EQ(prefault_bytes(parse(discovering)), std::size_t{96} << 20);
+  const DaemonConfig three = parse(
+      "discovery: {enabled: false}\nmemory: {prefault_mb: auto}\n"
+      "streams: [{id: a}, {id: b}, {id: c}]\n");
+  EXPECT_FALSE(three.memory.prefault_mb.has_value());
+  EXPECT_EQ(prefault_auto_mb(three), 64 + 3 * 32);
+  EXPECT_EQ(prefault_bytes(three), std::size_t{160} << 20);
+  std::string many = "discovery: {enabled: false}\nstreams:\n";
+  for (int i = 0; i < 40; ++i) many += "  - {id: s" + std::to_string(i) + "}\n";
+  EXPECT_EQ(prefault_auto_mb(parse(many)), 1024);  // 64 + 40 * 32 = 1344, at most 1024
+  const DaemonConfig set = parse(discovering + "memory: {prefault_mb: 700}");
+  ASSERT_TRUE(set.memory.prefault_mb.has_value());
+  EXPECT_EQ(prefault_bytes(set), std::size_t{700} << 20);
+  EXPECT_EQ(prefault_bytes(parse(discovering + "memory: {prefault_mb: 0}")), 0u);
+  EXPECT_EQ(error_of(discovering + "memory: {prefault_mb: -1}"),
+            "memory.prefault_mb: -1 is out of range [0, 65536]");
+  EXPECT_EQ(error_of(discovering + "memory: {prefault_mb: 70000}"),
+            "memory.prefault_mb: 70000 is out of range [0, 65536]");
+  EXPECT_EQ(error_of(discovering + "memory: {prefault_mb: lots}"),
+            "memory.prefault_mb: cannot read 'lots' as an integer");
+  EXPECT_EQ(error_of(discovering + "memory: {prefault_mb: 1.5}"),
+            "memory.prefault_mb: cannot read '1.5' as an integer");
+  EXPECT_EQ(error_of(discovering + "memory: {lock: true}"), "memory.lock: unknown key");
+  EXPECT_EQ(error_of(discovering + "memory: 5"),
+            "memory: expected a mapping of keys to values, got '5'");
+}

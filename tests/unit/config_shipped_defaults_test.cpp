@@ -89,6 +89,8 @@ TEST(ConfigShippedDefaults, DaemonDdsOnlyConfigBehavesAsTheShippedFile) {
   EXPECT_EQ(tracker_config_to_yaml(shipped.tracker), tracker_config_to_yaml(minimal.tracker));
   EXPECT_EQ(shipped.threads, minimal.threads);
   EXPECT_EQ(shipped.queue_depth, minimal.queue_depth);
+  EXPECT_EQ(shipped.memory.prefault_mb, minimal.memory.prefault_mb);
+  EXPECT_EQ(prefault_bytes(shipped), prefault_bytes(minimal));
   EXPECT_EQ(shipped.outputs.odom_suffix, minimal.outputs.odom_suffix);
   EXPECT_EQ(shipped.outputs.map_patches_topic, minimal.outputs.map_patches_topic);
   EXPECT_EQ(shipped.outputs.status_topic, minimal.outputs.status_topic);

@@ -41,10 +41,12 @@ std::string describe(const DaemonConfig& c) {
     scheduling += fmt::format(", {} on CPUs [{}]", scheduling_scope_name(c.scheduling.scope),
                               fmt::join(c.scheduling.cpus, ", "));
   return fmt::format(
-      "domain {}, profile {}, streams [{}], discovery {}, threads {}, queue depth {}{}",
+      "domain {}, profile {}, streams [{}], discovery {}, threads {}, queue depth {}, heap "
+      "prefault {} MiB{}{}",
       c.dds.domain, service::to_string(c.dds.profile), streams,
       c.discovery.enabled ? c.discovery.pattern : std::string("off"),
-      c.threads == 0 ? std::string("auto") : std::to_string(c.threads), c.queue_depth, scheduling);
+      c.threads == 0 ? std::string("auto") : std::to_string(c.threads), c.queue_depth,
+      prefault_bytes(c) >> 20, c.memory.prefault_mb ? "" : " (auto)", scheduling);
 }
 
 }  // namespace
@@ -81,6 +83,16 @@ int main(int argc, char** argv) {
   }
   spdlog::info("litamin2d {} starting: {}", litamin2::version(), describe(config));
   if (!heap_policy.empty()) spdlog::info("heap policy left as it is: {}", heap_policy);
+  // Before any other thread allocates: they all take their memory from the touched heap.
+  if (const std::size_t bytes = prefault_bytes(config); bytes > 0 && heap_policy.empty()) {
+    const service::HeapPrefault prefault = service::prefault_heap(bytes);
+    if (!prefault.refused.empty())
+      spdlog::warn("heap not touched at start ({} of {} MiB): {}", prefault.touched_bytes >> 20,
+                   bytes >> 20, prefault.refused);
+    else
+      spdlog::info("heap: {} MiB touched at start in {:.2f} s (memory.prefault_mb)",
+                   prefault.touched_bytes >> 20, prefault.seconds);
+  }
 
   ServiceLoop service_loop(config.watchdog.enabled);
   // Before DDS starts: a port that cannot be bound fails the start with nothing published.

@@ -12,6 +12,8 @@
 #include "litamin2/service/watchdog_config.hpp"
 
 #include <Eigen/Geometry>
+#include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -141,6 +143,17 @@ struct LimitsConfig {
   int max_points_per_scan = 5'000'000;
 };
 
+/// The largest memory.prefault_mb accepted (64 GiB).
+inline constexpr int kMaxPrefaultMiB = 65536;
+
+/// The heap touched before the first scan (service::prefault_heap; docs/deploy.md, "Memory").
+struct MemoryConfig {
+  /// MiB of heap touched at start and kept: Fast DDS's sample buffers, the converted clouds and
+  /// the trackers' maps then come from pages already in place, instead of being faulted in while
+  /// the first scans arrive. 0: off. Absent or "auto": prefault_auto_mb().
+  std::optional<int> prefault_mb;
+};
+
 struct DaemonConfig {
   service::TransportConfig dds;
   /// DDS-Security (off by default).
@@ -163,6 +176,7 @@ struct DaemonConfig {
   WorkerScheduling scheduling;
   /// Frames queued per stream before the oldest is dropped.
   int queue_depth = 4;
+  MemoryConfig memory;
   OutputsConfig outputs;
   service::WatchdogConfig watchdog;
   /// The Prometheus endpoint (off unless metrics.listen is set).
@@ -173,6 +187,14 @@ struct DaemonConfig {
   /// left, to the readers' acknowledgment of the map patches written.
   double shutdown_timeout_s = 1.0;
 };
+
+/// "auto": 64 MiB and 32 MiB a configured stream (at least one; a daemon that discovers its
+/// streams counts one), at most 1024 MiB. Measured (docs/benchmarks.md, "The heap touched before
+/// the first scan"): ~20 MiB an HDL-64-size stream, ~7 MiB a VLP-16-size one.
+int prefault_auto_mb(const DaemonConfig& config);
+
+/// The bytes the daemon touches at start: memory.prefault_mb, or prefault_auto_mb().
+std::size_t prefault_bytes(const DaemonConfig& config);
 
 /// Throws ConfigError naming the key (as a dotted path) on the first invalid value: stream ids
 /// that are not valid (service::stream_id_error) or duplicate, topics that are not valid topic
