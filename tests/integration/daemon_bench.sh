@@ -7,6 +7,9 @@
 # Usage: daemon_bench.sh BUILD_DIR WORK_DIR STREAMS [RATE_HZ=10|max] [FRAMES=30] [THREADS=0]
 # Environment:
 #   QUEUE_DEPTH  the daemon's per-stream queue (default 4)
+#   PREFAULT_MB  the daemon's memory.prefault_mb (default: the key left out, so auto: 64 MiB and
+#                32 a stream touched at start); 0 = the heap not touched before the first scan;
+#                recorded in the JSON as prefault_mb
 #   PRELOAD=0    the replay reads scans while publishing instead of publishing CDR bytes
 #                serialised before the start (litamin2-replay --preload, the default)
 #   STAGGER=1    spread the streams over the period (litamin2-replay --stagger)
@@ -28,6 +31,9 @@
 #                _p99_worst_stream (from each scan's slot in the replay's schedule to the probe's
 #                reception of its odometry: includes the transport and the wait before the
 #                daemon's receive thread takes the scan, which latency_ms_* leave out),
+#                e2e_latency_ms_p50_steady / _p99_steady_all_frames / _p99_steady_worst_stream
+#                (the same from frame STEADY_FROM, default 20, on: after the start, where every
+#                stream's first scans arrive at once), steady_from_frame,
 #                replay_latest_start_ms and replay_writes_over_5ms_late (the replay's own delay:
 #                the latest write's start after its slot, and the writes over 5 ms late),
 #                daemon_cpu_ms_per_frame (the daemon's
@@ -43,7 +49,9 @@
 #                arrival is stamped, so the latency leaves it out); with PIN=1
 #                other_processes_share_of_daemon_core (CPU 1's busy time not the daemon's, over
 #                the wall time: other load that delays the daemon's frames); offline_cpu_ms_per_frame (the offline tool's wall time per frame, 1
-#                thread, for comparison)
+#                thread, for comparison); daemon_minor_faults_per_frame (the daemon's page faults
+#                from the first publication to the end, per frame: pages written for the first
+#                time), daemon_memory_at_end (VmHWM, VmRSS), prefault_mb (PREFAULT_MB)
 #   TRACKER=YAML the tracker's config (over the defaults), a YAML flow mapping written as the
 #                daemon's `tracker:` key and given to the offline run (--config), e.g.
 #                '{recovery: {first_speeds: []}}'; recorded in the JSON as tracker
@@ -155,6 +163,7 @@ run_once() {
     echo "discovery: {enabled: false}"
     echo "threads: $threads"
     echo "queue_depth: ${QUEUE_DEPTH:-4}"
+    if [ -n "${PREFAULT_MB:-}" ]; then echo "memory: {prefault_mb: $PREFAULT_MB}"; fi
     if [ -n "${SCHEDULING:-}" ]; then echo "scheduling: $SCHEDULING"; fi
     if [ -n "${TRACKER:-}" ]; then echo "tracker: $TRACKER"; fi
     echo "outputs: {status_period_s: 0.5}"
@@ -205,13 +214,14 @@ run_once() {
     "${rate_args[@]}" "${replay_args[@]}" "${replay_dirs[@]}" "${replay_streams[@]}" \
     > "$dir/replay.log" 2>&1 &
   local replay_pid=$!
-  local cpu_start=""
+  local cpu_start="" faults_start="" faults_end=""
   for _ in $(seq 1 6000); do
     if grep -qE "publishing [0-9]+ frames" "$dir/replay.log" 2>/dev/null ||
       ! kill -0 $replay_pid 2>/dev/null; then break; fi
     sleep 0.05
   done
   cpu_start=$(awk '{print $14 + $15}' /proc/$daemon_pid/stat)
+  faults_start=$(awk '{print $10}' /proc/$daemon_pid/stat)
   thread_cpu "$daemon_pid" > "$dir/threads_start.txt"
   local core_start=0 core_end=0
   [ "${PIN:-0}" != 1 ] || core_start=$(cpu_busy 1)
@@ -222,6 +232,7 @@ run_once() {
   end=$(date +%s.%N)
   local cpu_end
   cpu_end=$(awk '{print $14 + $15}' /proc/$daemon_pid/stat)
+  faults_end=$(awk '{print $10}' /proc/$daemon_pid/stat)
   thread_cpu "$daemon_pid" > "$dir/threads_end.txt"
   [ "${PIN:-0}" != 1 ] || core_end=$(cpu_busy 1)
   grep -E "^Vm(HWM|RSS)" /proc/$daemon_pid/status | tr -s ' \t' ' ' | paste -sd, - \
@@ -233,7 +244,8 @@ run_once() {
     wait $load_pid 2>/dev/null || true
   fi
   python3 - "$n" "$frames" "$start" "$end" "$offline_fps" "$cpu_start" "$cpu_end" \
-    "$(getconf CLK_TCK)" "$rate" "$points_per_scan" "$dir" "$daemon_pid" "$core_start" "$core_end" <<'PY'
+    "$(getconf CLK_TCK)" "$rate" "$points_per_scan" "$dir" "$daemon_pid" "$core_start" "$core_end" \
+    "$faults_start" "$faults_end" <<'PY'
 import json, os, re, sys
 n, frames = int(sys.argv[1]), int(sys.argv[2])
 start, end, offline_fps = map(float, sys.argv[3:6])
@@ -288,6 +300,10 @@ other_load = ((core_end - core_start) - (cpu_end - cpu_start)) / ticks / (end - 
 # after the conversion). Stream bench_k is the replay's stream k-1; the frame's index is its
 # stamp's line in seq/times.txt.
 e2e_p50 = e2e_p99_worst = e2e_p99_all = None
+# The same from frame STEADY_FROM (default 20: 2 s at 10 Hz) on, after the start, where every
+# stream's first scans (the map begun, the second scan's starts at speed) arrive at once.
+steady_from = int(os.environ.get("STEADY_FROM", "20"))
+e2e_steady_p50 = e2e_steady_p99 = e2e_steady_p99_worst = None
 sched = None
 # The replay's own lateness (its core taken from it): the latest write's start after its slot,
 # and the writes that started over 5 ms late, over all streams.
@@ -303,21 +319,30 @@ for line in open(out + "/replay.log"):
 if sched and os.path.exists("seq/times.txt"):
     first, period_ns, stagger = sched
     index = {round(float(t) * 1e6): i for i, t in enumerate(open("seq/times.txt").read().split())}
-    all_ms, worst = [], []
+    all_ms, worst, steady_ms, steady_worst = [], [], [], []
     for k in range(1, n + 1):
         path = f"{out}/arrivals_bench_{k}.txt"
         if not os.path.exists(path): continue
         offset_ns = (k - 1) * period_ns // n if stagger else 0
-        ms = []
+        ms, steady = [], []
         for line in open(path):
             recv, stamp = line.split()[:2]
             sec, nsec = stamp.split(".")
             i = index.get(round((int(sec) + int(nsec) * 1e-9) * 1e6))
             if i is None: continue
             ms.append((float(recv) - first - (offset_ns + i * period_ns) * 1e-9) * 1000.0)
+            if i >= steady_from: steady.append(ms[-1])
         if ms:
             ms.sort(); all_ms += ms
             worst.append(ms[min(len(ms) - 1, int(0.99 * len(ms)))])
+        if steady:
+            steady.sort(); steady_ms += steady
+            steady_worst.append(steady[min(len(steady) - 1, int(0.99 * len(steady)))])
+    if steady_ms:
+        steady_ms.sort()
+        e2e_steady_p50 = steady_ms[len(steady_ms) // 2]
+        e2e_steady_p99 = steady_ms[min(len(steady_ms) - 1, int(0.99 * len(steady_ms)))]
+        e2e_steady_p99_worst = max(steady_worst)
     if all_ms:
         all_ms.sort()
         e2e_p50 = all_ms[len(all_ms) // 2]
@@ -332,6 +357,9 @@ result = {
     "daemon_cpu_ms_per_frame": daemon_ms, "tracking_cpu_ms_per_frame": tracking_ms,
     "offline_cpu_ms_per_frame": offline_ms,
     "e2e_latency_ms_p50": e2e_p50, "e2e_latency_ms_p99_all_frames": e2e_p99_all,
+    "steady_from_frame": steady_from, "e2e_latency_ms_p50_steady": e2e_steady_p50,
+    "e2e_latency_ms_p99_steady_all_frames": e2e_steady_p99,
+    "e2e_latency_ms_p99_steady_worst_stream": e2e_steady_p99_worst,
     "e2e_latency_ms_p99_worst_stream": e2e_p99_worst,
     "replay_latest_start_ms": replay_late_ms, "replay_writes_over_5ms_late": replay_late_writes,
     "dds_path_cpu_ms_per_frame": daemon_ms - tracking_ms if processed else None,
@@ -341,6 +369,11 @@ result = {
     "daemon_threads_run_delay_ms_per_frame": threads_delay_ms,
     "other_processes_share_of_daemon_core": other_load,
     "wall_s": end - start,
+    "prefault_mb": os.environ.get("PREFAULT_MB") or "auto",
+    "daemon_minor_faults_per_frame": (int(sys.argv[16]) - int(sys.argv[15])) / processed
+                                     if processed else None,
+    "daemon_memory_at_end": open(out + "/memory.txt").read().strip()
+                            if os.path.exists(out + "/memory.txt") else None,
     "input": "plain_scan" if os.environ.get("ZERO_COPY", "0") == "1" else "pointcloud2",
     "input_reliability": "best effort" if os.environ.get("BEST_EFFORT", "0") == "1" else "reliable",
     "scheduling": os.environ.get("SCHEDULING") or "default (other)",
