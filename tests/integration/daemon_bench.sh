@@ -421,7 +421,7 @@ if [ "${SEARCH:-0}" != 1 ]; then
 fi
 
 # Search: double while runs pass, then bisect between the last pass and the first failure.
-mkdir -p search
+rm -rf search && mkdir -p search  # no run of an earlier search in this one's JSON
 good=0
 bad=0
 n=$streams
