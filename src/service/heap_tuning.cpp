@@ -6,6 +6,7 @@
 #include <chrono>
 #include <climits>
 #include <cstdlib>
+#include <fstream>
 #include <optional>
 #include <vector>
 
@@ -22,6 +23,17 @@ std::optional<std::string> allocator_set_by_environment() {
 }
 
 }  // namespace
+
+std::optional<std::size_t> memory_available_bytes() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  std::size_t kib = 0;
+  std::string unit;
+  while (meminfo >> key >> kib >> unit) {
+    if (key == "MemAvailable:") return kib * 1024;
+  }
+  return std::nullopt;
+}
 
 std::string keep_large_buffers_in_heap(std::size_t mmap_threshold_bytes) {
   if (const auto name = allocator_set_by_environment())
@@ -43,6 +55,12 @@ HeapPrefault prefault_heap(std::size_t bytes, std::size_t chunk_bytes) {
   }
   if (chunk_bytes == 0) {
     done.refused = "chunk size 0";
+    return done;
+  }
+  // Touching more than the machine has would end in the OOM killer, not in an error.
+  if (const auto available = memory_available_bytes(); available && bytes > *available / 2) {
+    done.refused = std::to_string(bytes >> 20) + " MiB is more than half the memory available (" +
+                   std::to_string(*available >> 20) + " MiB)";
     return done;
   }
   // -1 is glibc's "never" for the trim threshold (the value is read as unsigned).

@@ -86,6 +86,17 @@ TEST(ServiceHeapTuning, LeavesAnAllocatorSetThroughTheEnvironment) {
   unsetenv("MALLOC_ARENA_MAX");
 }
 
+TEST(ServiceHeapTuning, MoreThanHalfTheAvailableMemoryIsRefused) {
+  clear_allocator_environment();
+  const auto available = memory_available_bytes();
+  ASSERT_TRUE(available.has_value());
+  EXPECT_GT(*available, 0u);
+  const HeapPrefault refused = prefault_heap(*available / 2 + (std::size_t{64} << 20));
+  EXPECT_EQ(refused.touched_bytes, 0u);
+  EXPECT_NE(refused.refused.find("MiB is more than half the memory available"), std::string::npos)
+      << refused.refused;
+}
+
 TEST(ServiceHeapTuning, NothingToTouchOrNoChunkSize) {
   clear_allocator_environment();
   const HeapPrefault none = prefault_heap(0);

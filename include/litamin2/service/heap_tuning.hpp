@@ -14,6 +14,7 @@
 /// first scan, as real-time programs lock and prefault their heap.
 
 #include <cstddef>
+#include <optional>
 #include <string>
 
 namespace litamin2::service {
@@ -42,7 +43,11 @@ struct HeapPrefault {
 /// touched pages too) and no trimming (M_TRIM_THRESHOLD never: the process keeps its high-water
 /// mark). Call it from the main thread before any other thread allocates. Refused when the
 /// operator set the allocator through the environment (as keep_large_buffers_in_heap), when
-/// `chunk_bytes` is 0, or when an allocation fails (what was touched is kept). 0 bytes: nothing.
+/// `chunk_bytes` is 0, when `bytes` is more than half of memory_available_bytes(), or when an
+/// allocation fails (what was touched is kept). 0 bytes: nothing.
 HeapPrefault prefault_heap(std::size_t bytes, std::size_t chunk_bytes = 16u << 20);
+
+/// MemAvailable of /proc/meminfo, in bytes; none when it cannot be read.
+std::optional<std::size_t> memory_available_bytes();
 
 }  // namespace litamin2::service
