@@ -24,8 +24,7 @@ namespace litamin2::service {
 /// buffers stay in the heap for reuse (the heap then keeps up to that much freed memory instead of
 /// returning it at once). Does nothing and returns a reason when the operator set the allocator
 /// through the environment (MALLOC_MMAP_THRESHOLD_, MALLOC_TRIM_THRESHOLD_, MALLOC_ARENA_MAX or
-/// GLIBC_TUNABLES) or
-/// the call fails; empty on success.
+/// GLIBC_TUNABLES) or the call fails; empty on success.
 std::string keep_large_buffers_in_heap(std::size_t mmap_threshold_bytes = 32u << 20);
 
 /// What prefault_heap() did.
