@@ -78,7 +78,7 @@ run_with_signal() {
   [ "$(tail -n 1 "notify_$1.log" | cut -d' ' -f2)" = "STOPPING=1" ] || fail "STOPPING not last"
   # The heap touched before DDS starts (memory.prefault_mb auto: 64 MiB and 32 for the one
   # stream a discovering daemon counts), before READY=1.
-  # A sanitiser build's allocator refuses mallopt: the daemon then says so and touches nothing.
+  # AddressSanitizer's allocator refuses mallopt: the daemon then says so and touches nothing.
   grep -q "heap policy left as it is: " "daemon_$1.log" ||
     grep -q "heap: 96 MiB touched at start in [0-9.]* s (memory.prefault_mb)" "daemon_$1.log" ||
     fail "no heap prefault in the log"
