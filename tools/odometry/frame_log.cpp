@@ -9,9 +9,8 @@ FrameLog::FrameLog(const std::string& path) : out_(path, std::ios::trunc) {
   if (!out_) throw std::runtime_error("cannot write " + path);
   out_.precision(10);
   out_ << "index,file,stamp_s,status,keyframe,inlier_share,retried,retry_registrations,"
-          "recovered,pose_searched,pose_found,map_reset,voxelizations,iterations,source_"
-          "distributions,correspondences,"
-          "self_hits,deskewed,ms,x,y,z\n";
+          "recovered,pose_searched,pose_found,map_reset,voxelizations,iterations,"
+          "source_distributions,correspondences,self_hits,deskewed,ms,x,y,z\n";
 }
 
 void FrameLog::add(std::size_t index, const std::string& file, double stamp_s,
