@@ -1,5 +1,7 @@
 #include "litamin2/core/sensor_preset.hpp"
 
+#include "litamin2/core/elevation_bins.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -110,15 +112,15 @@ SensorSignature measure_signature(const PointCloud& scan) {
   // Elevation histogram in 0.05 deg bins over -45..+45 deg.
   constexpr double kBin = 0.05, kLow = -45.0;
   constexpr int kBins = 1800;
+  static const ElevationBins bins(kLow, kBin, kBins);
   std::vector<int> histogram(kBins, 0);
   SensorSignature out;
   for (const Eigen::Vector3f& p : scan.points) {
     const double horizontal = std::hypot(p.x(), p.y());
     const double range_sq = horizontal * horizontal + double(p.z()) * p.z();
     if (!(range_sq >= 2.5 * 2.5 && range_sq <= 120.0 * 120.0)) continue;
-    const double elevation = std::atan2(p.z(), horizontal) * 180.0 / M_PI;
-    const int bin = static_cast<int>(std::floor((elevation - kLow) / kBin));
-    if (bin < 0 || bin >= kBins) continue;
+    const int bin = bins.bin(p.z(), horizontal);
+    if (bin < 0) continue;
     ++histogram[bin];
     ++out.points;
   }
