@@ -167,6 +167,7 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node, const TrackerConf
   recovery.read("ranked_starts", rec.ranked_starts);
   read_numbers(recovery, "first_speeds", rec.first_speeds);
   recovery.read("first_speeds_max_travel", rec.first_speeds_max_travel);
+  recovery.read("first_speeds_skip_reached", rec.first_speeds_skip_reached);
   recovery.read("min_gain", rec.min_gain);
   recovery.read("share_smoothing", rec.share_smoothing);
   read_managed(recovery, "reset_ratio", rec.reset_ratio);
@@ -289,6 +290,8 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "first_speeds" << YAML::Value << YAML::Flow << c.recovery.first_speeds;
   out << YAML::Key << "first_speeds_max_travel" << YAML::Value
       << c.recovery.first_speeds_max_travel;
+  out << YAML::Key << "first_speeds_skip_reached" << YAML::Value
+      << c.recovery.first_speeds_skip_reached;
   out << YAML::Key << "min_gain" << YAML::Value << c.recovery.min_gain;
   out << YAML::Key << "share_smoothing" << YAML::Value << c.recovery.share_smoothing;
   out << YAML::Key << "reset_ratio" << YAML::Value << c.recovery.reset_ratio;

@@ -189,7 +189,14 @@ Tracker::RegistrationStart Tracker::registration_start(const PointCloud& scan, d
   }
   spent.register_ms += elapsed_ms(start_time);
   if (best_score <= 0.0) return chosen;  // no start at speed puts the scan on the map
+  // The registration from rest travelled more than half way to the best start: it ended
+  // nearer that start than the start at rest, so it found the motion the start stands for.
+  if (recovery.first_speeds_skip_reached && rest.result.valid &&
+      (best_start.inverse() * rest.result.pose).translation().norm() <
+          (at_rest.inverse() * rest.result.pose).translation().norm())
+    return chosen;
   ScanRegistration other = registered_from(best_start);
+  ++chosen.speed_registrations;
   const double share = other.result.valid ? other.inlier_share() : 0.0;
   if (share > rest_share && share >= recovery.min_gain * rest_share) {
     chosen.pose = best_start;
@@ -374,6 +381,7 @@ FrameResult Tracker::process_scaled(const PointCloud& raw, double motion_scale,
     frame.times.voxelize_ms = elapsed_ms(start);
   }
   frame.source_distributions = static_cast<int>(source_.size());
+  frame.start_registrations = start.speed_registrations;
   frame.times.voxelize_ms += start_search.voxelize_ms;
   frame.times.register_ms += start_search.register_ms;
 

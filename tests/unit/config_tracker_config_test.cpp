@@ -50,6 +50,7 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   config.recovery.min_gain = 1.25;
   config.recovery.first_speeds = {-2.5, 7.5};
   config.recovery.first_speeds_max_travel = 0.25;
+  config.recovery.first_speeds_skip_reached = false;
   config.recovery.ranked_starts = 3;
   config.recovery.global_search.trigger_ratio = 0.4375;
   config.recovery.global_search.range_xy = 12.5;
@@ -69,6 +70,7 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   EXPECT_EQ(back.recovery.min_gain, 1.25);
   EXPECT_EQ(back.recovery.first_speeds, (std::vector<double>{-2.5, 7.5}));
   EXPECT_EQ(back.recovery.first_speeds_max_travel, 0.25);
+  EXPECT_FALSE(back.recovery.first_speeds_skip_reached);
   EXPECT_EQ(back.recovery.ranked_starts, 3);
   EXPECT_EQ(back.recovery.global_search.trigger_ratio, 0.4375);
   EXPECT_EQ(back.recovery.global_search.range_xy, 12.5);
@@ -111,6 +113,9 @@ TEST(TrackerConfigYaml, ErrorsNameKeyAndValue) {
             std::string::npos);
   EXPECT_NE(error_of("recovery: {first_speeds_max_travel: -1}")
                 .find("recovery.first_speeds_max_travel: -1"),
+            std::string::npos);
+  EXPECT_NE(error_of("recovery: {first_speeds_skip_reached: maybe}")
+                .find("recovery.first_speeds_skip_reached"),
             std::string::npos);
   EXPECT_NE(error_of("recovery: {ranked_starts: -1}").find("recovery.ranked_starts: -1"),
             std::string::npos);

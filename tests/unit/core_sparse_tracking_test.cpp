@@ -347,9 +347,33 @@ TEST(SparseTracking, AStartAtSpeedIsFoundFromTheFirstSpeeds) {
   const auto truth = drive(steps);
   std::vector<FrameResult> frames;
   EXPECT_LT(worst_step_error(truth, TrackerConfig{}, &frames), 0.15);
+  ASSERT_GT(frames.size(), 2u);
+  EXPECT_EQ(frames[1].start_registrations, 1);
+  EXPECT_EQ(frames[2].start_registrations, 0);
   TrackerConfig at_rest;
   at_rest.recovery.first_speeds.clear();
   EXPECT_GT(worst_step_error(truth, at_rest), 0.5);
+}
+
+TEST(SparseTracking, NoStartAtSpeedIsRegisteredWhereTheStartAtRestReachedIt) {
+  // recovery.first_speeds_skip_reached: at 8 m/s (0.8 m between untimed scans) the second
+  // scan's registration from the first pose travels to the motion, but less than
+  // first_speeds_max_travel, so the starts at speed are ranked. It ended nearer the best of
+  // them (0.5 or 1 m) than the first pose, so that start is not registered; the poses are
+  // those of a tracker that registers it (and keeps the registration from rest), bit for bit.
+  std::vector<double> steps(14, 0.8);
+  steps[0] = 0.0;
+  const auto truth = drive(steps);
+  std::vector<FrameResult> skipped, registered;
+  EXPECT_LT(worst_step_error(truth, TrackerConfig{}, &skipped), 0.15);
+  TrackerConfig always;
+  always.recovery.first_speeds_skip_reached = false;
+  worst_step_error(truth, always, &registered);
+  ASSERT_EQ(skipped.size(), registered.size());
+  EXPECT_EQ(skipped[1].start_registrations, 0);
+  EXPECT_EQ(registered[1].start_registrations, 1);
+  for (std::size_t i = 0; i < skipped.size(); ++i)
+    EXPECT_TRUE(skipped[i].pose.isApprox(registered[i].pose, 0.0)) << "frame " << i;
 }
 
 TEST(SparseTracking, TheStartAtSpeedIsPickedAmongManyByItsScore) {

@@ -63,6 +63,9 @@ struct FrameResult {
   bool recovered = false;
   /// Registrations from the other starts that the retry made (RecoveryConfig::ranked_starts).
   int retry_registrations = 0;
+  /// Registrations from starts at speed that the second scan's start search made
+  /// (RecoveryConfig::first_speeds; 0 on every other frame).
+  int start_registrations = 0;
   /// A break was confirmed (RecoveryConfig::reset_ratio): the previous scan fitted nothing, and
   /// this one fits the map restarted from it, which replaced the map; this scan is registered
   /// to it and added to it.
@@ -172,14 +175,17 @@ class Tracker {
   struct RegistrationStart {
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     std::optional<ScanRegistration> registered;
+    /// Registrations from starts at speed made to choose it.
+    int speed_registrations = 0;
   };
   /// Where the second scan's registration starts when no motion is known
   /// (RecoveryConfig::first_speeds): the first pose, or the first pose moved along the sensor's
   /// x axis at one of the speeds over `interval_s`, if registering `scan` (as it is voxelised,
   /// without self-hits) from there fits min_gain times better than from the first pose; the
   /// speeds are tried only when the registration from the first pose moved the scan less than
-  /// first_speeds_max_travel. The prediction otherwise (with no registration). Adds the
-  /// registrations' time to `spent`.
+  /// first_speeds_max_travel, and the best-ranked one is registered unless that registration
+  /// ended nearer it than the first pose (first_speeds_skip_reached). The prediction otherwise
+  /// (with no registration). Adds the registrations' time to `spent`.
   RegistrationStart registration_start(const PointCloud& scan, double motion_scale,
                                        double interval_s, StageTimes& spent);
   /// The recovery's other starts for a scan predicted at `predicted` (motion_scales applied to

@@ -80,6 +80,11 @@ struct RecoveryConfig {
   /// a motion has found it (on the harder simulated starts the search changed nothing there,
   /// at 5-8x the second scan's time; docs/benchmarks.md). 0: always searched.
   double first_speeds_max_travel = 1.0;
+  /// ... and the best-ranked start at speed is not registered when the registration from rest
+  /// ended nearer that start than the first pose: it travelled more than half way to the
+  /// motion the start stands for (the builtin loop's 0.8 m; docs/benchmarks.md). false: the
+  /// best start is always registered.
+  bool first_speeds_skip_reached = true;
   /// Weight of a new frame in the running inlier shares: the typical share (every registered
   /// frame; the trigger above and the global search compare with it) and the fitting share
   /// (only frames at or above trigger_ratio of it: a run of frames that fit badly, after a
