@@ -7,6 +7,7 @@
 #include "common/cli.hpp"
 #include "litamin2/core/correspondence_search.hpp"
 #include "litamin2/core/scan_registration.hpp"
+#include "litamin2/core/sensor_preset.hpp"
 #include "litamin2/core/tracker.hpp"
 #include "litamin2/io/kitti_bin.hpp"
 #include "litamin2/io/kitti_sequence.hpp"
@@ -108,6 +109,13 @@ BENCHMARK(BM_CostEvaluation)
     ->Args({2, 1})
     ->Unit(benchmark::kMicrosecond);
 
+/// The sensor recognition of `sensor: auto` on a real scan (every point's elevation binned).
+void BM_SensorSignature(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(measure_signature(real_pair().source));
+  state.SetItemsProcessed(state.iterations() * real_pair().source.size());
+}
+BENCHMARK(BM_SensorSignature)->Unit(benchmark::kMillisecond);
+
 /// The first 100 scans of the sequence folder LITAMIN2_BENCH_SEQUENCE, loaded once; null (and
 /// the benchmark skipped with a message) when the variable is not set.
 const std::vector<PointCloud>* sequence_scans(benchmark::State& state) {
@@ -152,6 +160,30 @@ void BM_VoxelizeSequence(benchmark::State& state) {
                                                      benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_VoxelizeSequence)->Arg(1)->Arg(100)->Unit(benchmark::kMillisecond);
+
+/// A stream's start (LITAMIN2_BENCH_SEQUENCE): a new tracker with the shipped defaults
+/// (`sensor: auto`) takes the sequence's first two scans, untimed, one thread: the sensor
+/// recognition, the first map, and the second scan's start search (recovery.first_speeds).
+/// Every stream of a daemon pays this once; a daemon started under a fleet pays it for all of
+/// them within one scan period.
+void BM_StreamStart(benchmark::State& state) {
+  const std::vector<PointCloud>* sequence = sequence_scans(state);
+  if (!sequence) return;
+  if (sequence->size() < 2) {
+    state.SkipWithError("the sequence has fewer than two scans");
+    return;
+  }
+  tbb::task_arena arena(1);
+  arena.execute([&] {
+    for (auto _ : state) {
+      Tracker tracker(TrackerConfig{});
+      benchmark::DoNotOptimize(tracker.process((*sequence)[0]));
+      benchmark::DoNotOptimize(tracker.process((*sequence)[1]));
+    }
+  });
+  state.SetLabel("ms = a new stream's first two scans");
+}
+BENCHMARK(BM_StreamStart)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 /// Whole frames of a sequence (LITAMIN2_BENCH_SEQUENCE), preloaded: args threads, mode.
 void BM_TrackerFrames(benchmark::State& state) {
