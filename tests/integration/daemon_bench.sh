@@ -26,7 +26,9 @@
 #                figures are one daemon core's capacity
 #   SENSOR=NAME  the simulator's sensor (default hdl64; vlp16 for VLP-16-size streams)
 #   JSON=FILE    write the run's figures as JSON: streams, rate_hz, frames_expected,
-#                frames_processed, dropped, latency_ms_p50 (median of the streams' p50),
+#                frames_processed, dropped (frames not processed: dropped_by_daemon from its
+#                status, and, where probe_timed_out, those not processed when the probe stopped
+#                waiting), latency_ms_p50 (median of the streams' p50),
 #                latency_ms_p99 (worst stream's p99), e2e_latency_ms_p50 / _p99_all_frames /
 #                _p99_worst_stream (from each scan's slot in the replay's schedule to the probe's
 #                reception of its odometry: includes the transport and the wait before the
@@ -67,7 +69,8 @@
 #                'chrt -f 10': other processes on CPU 0 then cannot delay the publication
 #                (a late replay publishes its scans in a burst); recorded as publisher_prefix
 #   PROBE_TIMEOUT=S  how long the probe waits for the odometry (default 60 + STREAMS * FRAMES / 20
-#                s): a run that drops frames ends after it
+#                s), counted from before the replay's preload (20-28 s for 32 x 100 HDL-64-size
+#                scans on a 2-core VM): a run that drops frames ends after it
 #   CORE_LOAD=1  competing load on the daemon's core (needs PIN=1): one busy loop on CPU 1 at
 #                nice CORE_LOAD_NICE (default 10) in a session of its own (setsid: its own
 #                autogroup, as another login's or service's process), started before the
@@ -252,7 +255,10 @@ start, end, offline_fps = map(float, sys.argv[3:6])
 cpu_start, cpu_end, ticks = float(sys.argv[6]), float(sys.argv[7]), float(sys.argv[8])
 rate, points, out = sys.argv[9], int(sys.argv[10]), sys.argv[11]
 p50, p99, dropped, processed, tracking_s = [], [], 0, 0, 0.0
+probe_timed_out = False
 for line in open(out + "/probe.log"):
+    if line.startswith("timed out after"):
+        probe_timed_out = True
     m = re.match(r"status \S+: processed (\d+), dropped (\d+), bad \d+, p50 ([\d.]+) ms, "
                  r"p99 ([\d.]+) ms, map \d+, tracking cpu ([\d.]+) s", line)
     if m:
@@ -352,6 +358,8 @@ result = {
     "streams": n, "rate_hz": rate if rate == "max" else float(rate), "points_per_scan": points,
     "frames_expected": expected, "frames_processed": processed,
     "dropped": dropped + max(0, expected - processed - dropped),
+    "dropped_by_daemon": dropped,
+    "probe_timed_out": probe_timed_out,
     "latency_ms_p50": sorted(p50)[len(p50) // 2] if p50 else None,
     "latency_ms_p99": max(p99) if len(p99) == n else None,
     "daemon_cpu_ms_per_frame": daemon_ms, "tracking_cpu_ms_per_frame": tracking_ms,
@@ -399,6 +407,11 @@ print(f"{n} stream(s) x {frames} frames ({points} points) at {rate}: {processed}
       + f"); workers waited {fmt(result['worker_run_delay_ms_per_frame'])} ms a frame for the "
       f"core, other processes used {fmt(other_load)} of it; offline tool {offline_ms:.2f} ms a frame "
       f"(wall, 1 thread); {end - start:.2f} s")
+if probe_timed_out:
+    print(f"warning: the probe timed out (PROBE_TIMEOUT) before every odometry message "
+          f"arrived: the latencies cover the messages received, and the "
+          f"{max(0, expected - processed - dropped)} frame(s) the daemon's last status had not "
+          f"processed are counted as dropped ({dropped} dropped by the daemon)", file=sys.stderr)
 PY
   echo "litamin2d memory at the end: $(cat "$dir/memory.txt")"
 }

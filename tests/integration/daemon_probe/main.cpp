@@ -163,7 +163,11 @@ int main(int argc, char** argv) {
       std::ofstream(ready_file) << "ready\n";
       ready_written = true;
     }
-    if (all_received || Clock::now() > deadline) break;
+    if (all_received) break;
+    if (Clock::now() > deadline) {
+      std::printf("timed out after %.0f s with messages missing\n", timeout_s);
+      break;
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   // Wait for a status that reports every frame of every stream processed: a status period, or
