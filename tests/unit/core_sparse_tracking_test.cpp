@@ -131,6 +131,14 @@ std::vector<Eigen::Isometry3d> drive(const std::vector<double>& steps) {
   return poses;
 }
 
+/// A stream that starts at `step` metres a frame (untimed scans: 10 * step m/s), 14 frames,
+/// the first at rest.
+std::vector<Eigen::Isometry3d> start_at_speed(double step) {
+  std::vector<double> steps(14, step);
+  steps[0] = 0.0;
+  return drive(steps);
+}
+
 /// Largest frame-to-frame motion error (translation m) of the tracker along `truth`.
 double worst_step_error(const std::vector<Eigen::Isometry3d>& truth, const TrackerConfig& config,
                         std::vector<FrameResult>* frames = nullptr) {
@@ -149,6 +157,13 @@ double worst_step_error(const std::vector<Eigen::Isometry3d>& truth, const Track
     worst = std::max(worst, (expected.inverse() * got).translation().norm());
   }
   return worst;
+}
+
+/// Poses of two runs along the same drive, bit for bit.
+void expect_same_poses(const std::vector<FrameResult>& a, const std::vector<FrameResult>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i)
+    EXPECT_TRUE(a[i].pose.isApprox(b[i].pose, 0.0)) << "frame " << i;
 }
 
 /// 1 m a frame, then frames dropped: steps of 3 m and 4 m (the prediction is 2-3 m short),
@@ -342,9 +357,7 @@ TEST(SparseTracking, AStartAtSpeedIsFoundFromTheFirstSpeeds) {
   // A stream that starts at 40 m/s (4 m between untimed scans): the second scan, with no
   // motion known, is registered from the first pose and from starts along x at
   // recovery.first_speeds; without them it stays near the first pose and the track is lost.
-  std::vector<double> steps(14, 4.0);
-  steps[0] = 0.0;
-  const auto truth = drive(steps);
+  const auto truth = start_at_speed(4.0);
   std::vector<FrameResult> frames;
   EXPECT_LT(worst_step_error(truth, TrackerConfig{}, &frames), 0.15);
   ASSERT_GT(frames.size(), 2u);
@@ -361,9 +374,7 @@ TEST(SparseTracking, NoStartAtSpeedIsRegisteredWhereTheStartAtRestReachedIt) {
   // first_speeds_max_travel, so the starts at speed are ranked. It ended nearer the best of
   // them (0.5 or 1 m) than the first pose, so that start is not registered; the poses are
   // those of a tracker that registers it (and keeps the registration from rest), bit for bit.
-  std::vector<double> steps(14, 0.8);
-  steps[0] = 0.0;
-  const auto truth = drive(steps);
+  const auto truth = start_at_speed(0.8);
   std::vector<FrameResult> skipped, registered;
   EXPECT_LT(worst_step_error(truth, TrackerConfig{}, &skipped), 0.15);
   TrackerConfig always;
@@ -372,21 +383,19 @@ TEST(SparseTracking, NoStartAtSpeedIsRegisteredWhereTheStartAtRestReachedIt) {
   ASSERT_EQ(skipped.size(), registered.size());
   EXPECT_EQ(skipped[1].start_registrations, 0);
   EXPECT_EQ(registered[1].start_registrations, 1);
-  for (std::size_t i = 0; i < skipped.size(); ++i)
-    EXPECT_TRUE(skipped[i].pose.isApprox(registered[i].pose, 0.0)) << "frame " << i;
+  expect_same_poses(skipped, registered);
 }
 
 TEST(SparseTracking, TheStartAtSpeedIsPickedAmongManyByItsScore) {
   // Only the start at speed whose correlative score against the map is highest is registered:
   // among starts from 40 m/s backwards to 80 m/s forwards, the one at the stream's 40 m/s
   // (4 m between untimed scans) is that start, and the track holds.
-  std::vector<double> steps(14, 4.0);
-  steps[0] = 0.0;
+  const auto truth = start_at_speed(4.0);
   TrackerConfig config;
   config.recovery.first_speeds = {-40.0, -20.0, 5.0, 10.0, 20.0, 40.0, 60.0, 80.0};
-  EXPECT_LT(worst_step_error(drive(steps), config), 0.15);
+  EXPECT_LT(worst_step_error(truth, config), 0.15);
   config.recovery.first_speeds = {-40.0, -20.0, 80.0};  // none near the motion
-  EXPECT_GT(worst_step_error(drive(steps), config), 0.5);
+  EXPECT_GT(worst_step_error(truth, config), 0.5);
 }
 
 TEST(SparseTracking, TheSpeedsAreSearchedOnlyWhenTheStartAtRestStayedNearRest) {
@@ -394,17 +403,13 @@ TEST(SparseTracking, TheSpeedsAreSearchedOnlyWhenTheStartAtRestStayedNearRest) {
   // registration from the first pose travels to the motion, so the speeds are not searched and
   // the poses are those of a tracker without them, bit for bit; searched anyway (0), the track
   // is as good.
-  std::vector<double> steps(14, 2.0);
-  steps[0] = 0.0;
-  const auto truth = drive(steps);
+  const auto truth = start_at_speed(2.0);
   std::vector<FrameResult> gated, without;
   EXPECT_LT(worst_step_error(truth, TrackerConfig{}, &gated), 0.15);
   TrackerConfig no_speeds;
   no_speeds.recovery.first_speeds.clear();
   worst_step_error(truth, no_speeds, &without);
-  ASSERT_EQ(gated.size(), without.size());
-  for (std::size_t i = 0; i < gated.size(); ++i)
-    EXPECT_TRUE(gated[i].pose.isApprox(without[i].pose, 0.0)) << "frame " << i;
+  expect_same_poses(gated, without);
   TrackerConfig search_always;
   search_always.recovery.first_speeds_max_travel = 0.0;
   EXPECT_LT(worst_step_error(truth, search_always), 0.15);
