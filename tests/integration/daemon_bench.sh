@@ -78,7 +78,10 @@
 #                in the JSON as core_load
 #   SEARCH=1     find the largest stream count with 0 dropped and p99 < P99_MS (default 20):
 #                doubles from STREAMS until a run fails, then bisects; each run's JSON in
-#                WORK_DIR/search/<n>.json and the answer in JSON (or printed)
+#                WORK_DIR/search/<n>.json and the answer in JSON (or printed);
+#                SEARCH_TRIES=K runs a failing count up to K times and counts it as passing if
+#                one run passes (default 1): on a shared VM one slow run (the same frames'
+#                tracking CPU 35 % higher) otherwise ends the doubling; every try is in the JSON
 set -euo pipefail
 source "$(dirname "$0")/daemon_netns.sh"
 build=$(cd "$1" && pwd)
@@ -438,10 +441,23 @@ rm -rf search && mkdir -p search  # no run of an earlier search in this one's JS
 good=0
 bad=0
 n=$streams
+# One count: run up to SEARCH_TRIES times, until a run passes; every run's JSON is kept
+# (search/<n>.json, then <n>_try2.json ...).
+count_passes() {
+  local n=$1 try
+  for try in $(seq 1 "${SEARCH_TRIES:-1}"); do
+    run_once "$n"
+    if [ "$try" = 1 ]; then
+      cp "run_$n/result.json" "search/$n.json"
+    else
+      cp "run_$n/result.json" "search/${n}_try$try.json"
+    fi
+    if run_passes "$n"; then return 0; fi
+  done
+  return 1
+}
 while :; do
-  run_once "$n"
-  cp "run_$n/result.json" "search/$n.json"
-  if run_passes "$n"; then
+  if count_passes "$n"; then
     good=$n
     n=$((n * 2))
   else
@@ -452,16 +468,17 @@ while :; do
 done
 while [ "$bad" -gt 0 ] && [ $((bad - good)) -gt "${SEARCH_STEP:-1}" ]; do
   n=$(((good + bad) / 2))
-  run_once "$n"
-  cp "run_$n/result.json" "search/$n.json"
-  if run_passes "$n"; then good=$n; else bad=$n; fi
+  if count_passes "$n"; then good=$n; else bad=$n; fi
 done
 echo "largest stream count with 0 dropped and p99 < ${P99_MS:-20} ms: $good (first failure: $bad)"
 if [ -n "${JSON:-}" ]; then
   python3 - "$good" "$bad" "${P99_MS:-20}" search "$JSON" <<'PY'
 import json, os, sys
 good, bad, bound, folder, out = int(sys.argv[1]), int(sys.argv[2]), float(sys.argv[3]), sys.argv[4], sys.argv[5]
-runs = [json.load(open(os.path.join(folder, f))) for f in sorted(os.listdir(folder), key=lambda f: int(f[:-5]))]
+def order(f):  # <n>.json, <n>_try<k>.json
+    n, _, t = f[:-5].partition("_try")
+    return int(n), int(t or 1)
+runs = [json.load(open(os.path.join(folder, f))) for f in sorted(os.listdir(folder), key=order)]
 json.dump({"largest_streams": good, "first_failing_streams": bad or None, "p99_bound_ms": bound,
            "runs": runs}, open(out, "w"), indent=1)
 PY
