@@ -85,9 +85,11 @@ rm -f probe.ready
   --stream car_c=offline/poses_kitti.txt --ready-file probe.ready > probe_discovery.log 2>&1 &
 probe_pid=$!
 # The daemon creates car_c's odometry writer when it discovers the replay's writer; the probe
-# needs a moment to match it before the first scan's odometry is published.
+# needs a moment to match it before the first scan's odometry is published. 2 s was once not
+# enough on a loaded machine (the probe matched ~3 s after the writer's creation and missed
+# the first 10 messages: a discovery message resent after Fast DDS's builtin heartbeat), so 5.
 timeout 300 "$tools/replay/litamin2-replay" --domain 18 --profile loopback --rate 10 \
-  --start-delay 2 seq --stream car_c > replay_discovery.log 2>&1 || { cat replay_discovery.log daemon_discovery.log; exit 1; }
+  --start-delay 5 seq --stream car_c > replay_discovery.log 2>&1 || { cat replay_discovery.log daemon_discovery.log; exit 1; }
 probe_status=0
 wait $probe_pid || probe_status=$?
 cat probe_discovery.log
