@@ -413,7 +413,7 @@ print(f"{n} stream(s) x {frames} frames ({points} points) at {rate}: {processed}
 if probe_timed_out:
     print(f"warning: the probe timed out (PROBE_TIMEOUT) before every odometry message "
           f"arrived: the latencies cover the messages received, and the "
-          f"{max(0, expected - processed - dropped)} frame(s) the daemon's last status had not "
+          f"{result['dropped'] - dropped} frame(s) the daemon's last status had not "
           f"processed are counted as dropped ({dropped} dropped by the daemon)", file=sys.stderr)
 PY
   echo "litamin2d memory at the end: $(cat "$dir/memory.txt")"
