@@ -25,6 +25,13 @@
 #                thread (threads: 1) on CPU 1, the offline run on CPU 1 too (taskset), so the
 #                figures are one daemon core's capacity
 #   SENSOR=NAME  the simulator's sensor (default hdl64; vlp16 for VLP-16-size streams)
+#   FRAME_SHIFT=S  independent streams: stream k replays FRAMES scans from frame (k-1)*S of one
+#                longer simulated sequence (seq_long, FRAMES + (STREAMS-1)*S frames of the
+#                builtin loop, which has 387), each checked against its own offline run
+#                (streams/<k>/offline), instead of every stream replaying the same FRAMES
+#                scans (the default, 0). With the same scans, a frame that costs more (a
+#                re-grid, a keyframe) arrives on every stream within one period; real sensors'
+#                costly frames do not line up. Recorded in the JSON as frame_shift
 #   JSON=FILE    write the run's figures as JSON: streams, rate_hz, frames_expected,
 #                frames_processed, dropped (frames not processed: dropped_by_daemon from its
 #                status, and, where probe_timed_out, those not processed when the probe stopped
@@ -120,18 +127,54 @@ if [ ! -f "seq/times.txt" ] || [ "$(ls seq/velodyne | wc -l)" -ne "$frames" ] ||
     > sim.log 2>&1
   echo "$sensor" > seq/sensor
 fi
-# The offline run with the same tracker config as the daemon (TRACKER), redone when it changes.
+# The offline run with the same tracker config as the daemon (TRACKER), redone when it changes:
+# offline_run SEQUENCE_DIR (its output in SEQUENCE_DIR/../offline for seq, SEQUENCE_DIR/offline
+# for a stream's folder).
 tracker_args=()
 if [ -n "${TRACKER:-}" ]; then
   echo "$TRACKER" > tracker.yaml
   tracker_args=(--config "$work/tracker.yaml")
 fi
-if [ ! -f offline/stats.json ] || [ "$(cat offline/tracker.txt 2>/dev/null)" != "${TRACKER:-}" ]; then
-  rm -rf offline
-  "${daemon_cpu[@]}" "$tools/odometry/litamin2-odometry" seq --output offline --threads 1 --quiet \
-    "${tracker_args[@]}" > odometry.log 2>&1
-  echo "${TRACKER:-}" > offline/tracker.txt
-fi
+offline_run() {
+  local input=$1 output=$2
+  if [ ! -f "$output/stats.json" ] ||
+    [ "$(cat "$output/tracker.txt" 2>/dev/null)" != "${TRACKER:-}" ]; then
+    rm -rf "$output"
+    "${daemon_cpu[@]}" "$tools/odometry/litamin2-odometry" "$input" --output "$output" \
+      --threads 1 --quiet "${tracker_args[@]}" > "$work/odometry.log" 2>&1
+    echo "${TRACKER:-}" > "$output/tracker.txt"
+  fi
+}
+offline_run seq offline
+
+# FRAME_SHIFT=S: stream k's own folder, streams/<k>: FRAMES scans from frame (k-1)*S of
+# seq_long (links to its scans; its stamps, so they keep increasing), and its offline run.
+frame_shift=${FRAME_SHIFT:-0}
+stream_dirs() {
+  local n=$1 needed=$((frames + ($1 - 1) * frame_shift)) k
+  if [ ! -f seq_long/times.txt ] || [ "$(ls seq_long/velodyne | wc -l)" -lt "$needed" ] ||
+    [ "$(cat seq_long/sensor 2>/dev/null)" != "$sensor" ]; then
+    rm -rf seq_long streams
+    "$tools/sim/litamin2-sim" --builtin loop --sensor "$sensor" --frames 0:$needed \
+      --output seq_long > sim_long.log 2>&1 ||
+      { echo "litamin2-sim could not make $needed frames (sim_long.log)" >&2; exit 1; }
+    echo "$sensor" > seq_long/sensor
+  fi
+  for k in $(seq 1 "$n"); do
+    local dir=streams/$k first=$(((k - 1) * frame_shift))
+    if [ ! -f "$dir/times.txt" ]; then
+      mkdir -p "$dir/velodyne"
+      for i in $(seq 0 $((frames - 1))); do
+        ln -sf "$work/seq_long/velodyne/$(printf %06d $((first + i))).bin" \
+          "$dir/velodyne/$(printf %06d "$i").bin"
+      done
+      sed -n "$((first + 1)),$((first + frames))p" seq_long/times.txt > "$dir/times.txt"
+      sed -n "$((first + 1)),$((first + frames))p" seq_long/poses.txt > "$dir/poses.txt"
+      cp seq_long/calib.txt "$dir/calib.txt"
+    fi
+    offline_run "$dir" "$dir/offline"
+  done
+}
 read -r offline_fps points_per_scan < <(python3 -c "
 import json, os
 s = json.load(open('offline/stats.json'))
@@ -163,6 +206,7 @@ cpu_busy() {
 run_once() {
   local n=$1 dir=run_$1
   rm -rf "$dir" && mkdir -p "$dir"
+  [ "$frame_shift" = 0 ] || stream_dirs "$n"
   local ids=()
   {
     echo "dds: {domain: 19, profile: loopback}"
@@ -191,11 +235,17 @@ run_once() {
   "${daemon_cpu[@]}" "${daemon_prefix[@]}" "$tools/litamin2d/litamin2d" --config "$dir/bench.yaml" \
     > "$dir/daemon.log" 2>&1 &
   local daemon_pid=$!
-  local probe_args=() replay_streams=() replay_dirs=()
+  local probe_args=() replay_streams=() replay_dirs=() k=0
   for id in "${ids[@]}"; do
-    probe_args+=(--stream "$id=offline/poses_kitti.txt")
+    k=$((k + 1))
     replay_streams+=(--stream "$id")
-    replay_dirs+=(seq)
+    if [ "$frame_shift" = 0 ]; then
+      probe_args+=(--stream "$id=offline/poses_kitti.txt")
+      replay_dirs+=(seq)
+    else
+      probe_args+=(--stream "$id=streams/$k/offline/poses_kitti.txt")
+      replay_dirs+=("streams/$k")
+    fi
   done
   rm -f "$dir/probe.ready"
   "${replay_cpu[@]}" "$build/tests/integration/daemon_probe" --domain 19 --expect "$frames" \
@@ -307,7 +357,7 @@ other_load = ((core_end - core_start) - (cpu_end - cpu_start)) / ticks / (end - 
 # the replay's schedule (logged by litamin2-replay: first slot, period, stagger), so the wait of
 # a scan before the daemon's receive thread takes it is included (the daemon's latency starts
 # after the conversion). Stream bench_k is the replay's stream k-1; the frame's index is its
-# stamp's line in seq/times.txt.
+# stamp's line in seq/times.txt (FRAME_SHIFT: in seq_long/times.txt, less the stream's first frame).
 e2e_p50 = e2e_p99_worst = e2e_p99_all = None
 # The same from frame STEADY_FROM (default 20: 2 s at 10 Hz) on, after the start, where every
 # stream's first scans (the map begun, the second scan's starts at speed) arrive at once.
@@ -325,9 +375,12 @@ for line in open(out + "/replay.log"):
 for line in open(out + "/replay.log"):
     m = re.search(r"schedule: first slot ([\d.]+) s since the epoch, period (\d+) ns, stagger (on|off)", line)
     if m: sched = (float(m.group(1)), int(m.group(2)), m.group(3) == "on")
-if sched and os.path.exists("seq/times.txt"):
+# FRAME_SHIFT=S: stream k's scans start at frame (k-1)*S of seq_long, whose stamps they keep.
+frame_shift = int(os.environ.get("FRAME_SHIFT", "0"))
+times = "seq_long/times.txt" if frame_shift > 0 else "seq/times.txt"
+if sched and os.path.exists(times):
     first, period_ns, stagger = sched
-    index = {round(float(t) * 1e6): i for i, t in enumerate(open("seq/times.txt").read().split())}
+    index = {round(float(t) * 1e6): i for i, t in enumerate(open(times).read().split())}
     all_ms, worst, steady_ms, steady_worst = [], [], [], []
     for k in range(1, n + 1):
         path = f"{out}/arrivals_bench_{k}.txt"
@@ -339,6 +392,7 @@ if sched and os.path.exists("seq/times.txt"):
             sec, nsec = stamp.split(".")
             i = index.get(round((int(sec) + int(nsec) * 1e-9) * 1e6))
             if i is None: continue
+            i -= (k - 1) * frame_shift
             ms.append((float(recv) - first - (offset_ns + i * period_ns) * 1e-9) * 1000.0)
             if i >= steady_from: steady.append(ms[-1])
         if ms:
@@ -389,6 +443,7 @@ result = {
     "input_reliability": "best effort" if os.environ.get("BEST_EFFORT", "0") == "1" else "reliable",
     "scheduling": os.environ.get("SCHEDULING") or "default (other)",
     "tracker": os.environ.get("TRACKER") or "default",
+    "frame_shift": frame_shift,
     "daemon_prefix": os.environ.get("DAEMON_PREFIX") or None,
     "publisher_prefix": os.environ.get("PUBLISHER_PREFIX") or None,
     "sched_rt_runtime_us_of_period": [int(open("/proc/sys/kernel/sched_rt_" + k + "_us").read())
