@@ -194,6 +194,38 @@ TEST(SparseTracking, RecognisesTheSensorFromItsRings) {
   }
 }
 
+/// A scan stored column by column as drivers publish it: for each of `columns` azimuths, every
+/// beam's return from a sphere 20 m away, so the beam of point i is i % beams.
+PointCloud column_ordered_scan(int beams, double low, double high, int columns) {
+  PointCloud scan;
+  for (int a = 0; a < columns; ++a) {
+    const double az = 2.0 * M_PI * a / columns;
+    for (int b = 0; b < beams; ++b) {
+      const double el = (low + (high - low) * b / (beams - 1)) * M_PI / 180.0;
+      scan.points.push_back((20.0 * Eigen::Vector3d(std::cos(el) * std::cos(az),
+                                                    std::cos(el) * std::sin(az), std::sin(el)))
+                                .cast<float>());
+    }
+  }
+  return scan;
+}
+
+TEST(SparseTracking, TheSignaturesSampleSeesEveryBeamOfAColumnOrderedScan) {
+  // The signature measures about a quarter of the points. A stride of 2, 4 or 8 would see a
+  // half, a quarter or an eighth of these beams (each a power of two).
+  for (const int beams : {16, 32, 64, 128}) {
+    const PointCloud scan = column_ordered_scan(beams, -22.0, 22.0, 1024);
+    const SensorSignature s = measure_signature(scan);
+    EXPECT_EQ(s.rings, beams);
+    EXPECT_NEAR(s.lowest_deg, -22.0, 0.05) << beams << " beams";
+    EXPECT_NEAR(s.highest_deg, 22.0, 0.05) << beams << " beams";
+    const double share = double(s.points) / double(scan.points.size());
+    EXPECT_GT(share, 0.2) << beams << " beams";
+    EXPECT_LT(share, 0.3) << beams << " beams";
+    EXPECT_EQ(measure_signature(scan).rings, s.rings) << "the same scan, the same signature";
+  }
+}
+
 TEST(SparseTracking, AutoSensorAppliesThePresetToUnsetKeysOnly) {
   const Street street;
   TrackerConfig config;  // sensor: auto
