@@ -128,8 +128,8 @@ if [ ! -f "seq/times.txt" ] || [ "$(ls seq/velodyne | wc -l)" -ne "$frames" ] ||
   echo "$sensor" > seq/sensor
 fi
 # The offline run with the same tracker config as the daemon (TRACKER), redone when it changes:
-# offline_run SEQUENCE_DIR (its output in SEQUENCE_DIR/../offline for seq, SEQUENCE_DIR/offline
-# for a stream's folder).
+# offline_run INPUT_DIR OUTPUT_DIR. seq's (offline/) gives the offline tool's time a frame; with
+# FRAME_SHIFT each stream's folder also has its own (streams/<k>/offline/), the probe's poses.
 tracker_args=()
 if [ -n "${TRACKER:-}" ]; then
   echo "$TRACKER" > tracker.yaml
