@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdint>
 #include <functional>
 #include <limits>
 
@@ -116,19 +115,7 @@ SensorSignature measure_signature(const PointCloud& scan) {
   static const ElevationBins bins(kLow, kBin, kBins);
   std::vector<int> histogram(kBins, 0);
   SensorSignature out;
-  // About one point in four is measured: the step to the next point is 1 to 7 (mean 4), drawn
-  // from a fixed linear congruential sequence. A fixed stride would see only some beams of a
-  // scan stored column by column (a driver's columns of 16, 32, 64 or 128 beams, all
-  // multiples of 4); random steps see all of them, and the same scan always gives the same
-  // signature. On 971 scans (simulated HDL-64, VLP-16 and OS-128 on the builtin loop and the
-  // street world, the real VLP-16 drive, the real KITTI pair) the sensor chosen is the one
-  // every point gives, at a third to a quarter of the time (docs/benchmarks.md).
-  std::uint32_t sequence = 0x9e3779b9u;
-  const std::size_t n = scan.points.size();
-  for (std::size_t i = 0; i < n;) {
-    const Eigen::Vector3f& p = scan.points[i];
-    sequence = sequence * 1664525u + 1013904223u;
-    i += 1 + (sequence >> 16) % 7;
+  for (const Eigen::Vector3f& p : scan.points) {
     const double horizontal = std::hypot(p.x(), p.y());
     const double range_sq = horizontal * horizontal + double(p.z()) * p.z();
     if (!(range_sq >= 2.5 * 2.5 && range_sq <= 120.0 * 120.0)) continue;

@@ -19,13 +19,12 @@ struct SensorSignature {
   /// Lowest and highest beam elevation that held returns, degrees.
   double lowest_deg = 0.0;
   double highest_deg = 0.0;
-  /// Points of the sample the signature was measured on.
+  /// Points the signature was measured on.
   int points = 0;
 };
 
 /// The signature of a scan from its points' elevation angles (points 2.5 to 120 m away: nearer
-/// ones are mostly self-hits, whose elevation depends on their offset from the beam origin),
-/// measured on a fixed pseudo-random sample of about a quarter of the points.
+/// ones are mostly self-hits, whose elevation depends on their offset from the beam origin).
 SensorSignature measure_signature(const PointCloud& scan);
 
 /// The preset sensor whose beam count and field of view are nearest to the signature
