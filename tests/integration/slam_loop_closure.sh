@@ -5,8 +5,10 @@
 # below the odometry's own: at most 80 % of it (measured: 0.61 m -> 0.41 m, 53 loops).
 set -euo pipefail
 tools=$1; work=$2
+# Without the shared data beside the checkout the test cannot run: skipped (exit 77, ctest's
+# SKIP_RETURN_CODE), as the unit tests that read it skip.
 [ -f "$3/data/kitti/poses/00.txt" ] ||
-  { echo "no KITTI 00 poses at $3/data/kitti/poses/00.txt (the shared data beside the checkout)"; exit 1; }
+  { echo "skipped: no KITTI 00 poses at $3/data/kitti/poses/00.txt (the shared data beside the checkout)"; exit 77; }
 rm -rf "$work"; mkdir -p "$work"
 "$tools/sim/litamin2-sim" --trajectory "$3/data/kitti/poses/00.txt" --sequence 00 \
   --frames 0:1650 --output "$work/seq" 2>/dev/null
