@@ -34,7 +34,7 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
   // Line-like combined distributions (not in the paper, RegistrationConfig::line_gate): two
   // parallel ring arcs, whose position across the line is partly the sensor's, not the world's.
   if (config.line_gate > 0.0 &&
-      combined_spread(target.cov, rotated_cov, config.lambda) < config.line_gate) {
+      combined_is_line(target.cov, rotated_cov, config.lambda, config.line_gate)) {
     return;
   }
   // ICP term, Eq. 3, with its robust weight, Eq. 5.

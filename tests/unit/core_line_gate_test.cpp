@@ -5,6 +5,7 @@
 #include "litamin2/core/correspondence_search.hpp"
 #include "litamin2/core/icp_term.hpp"
 #include "litamin2/core/registration.hpp"
+#include "litamin2/core/so3.hpp"
 #include "litamin2/core/voxel_map.hpp"
 #include "litamin2/core/voxelizer.hpp"
 
@@ -37,6 +38,38 @@ TEST(LineGate, CombinedSpreadSeparatesLinesFromPlanesAndRoundShapes) {
   EXPECT_GT(combined_spread(diagonal(0.5, 0.4, 0.3), arc, lambda), 0.3);
   // The isotropy of a line is 0 too: the isotropy gate cannot tell it from a plane.
   EXPECT_LT(combined_isotropy(arc, arc, lambda), 0.01);
+}
+
+TEST(LineGate, TheBoundedTestAgreesWithTheEigenvalues) {
+  // combined_is_line decides most cases from the trace, the minors and the Frobenius norm: it
+  // must agree with the eigenvalue ratio everywhere, including near the gate. Half the pairs
+  // are two line-like arcs at a random angle, so that lines and planes near the gate both occur.
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> log_scale(-5.0, 0.5);
+  std::normal_distribution<double> n(0.0, 1.0);
+  auto random_covariance = [&](bool arc) {
+    const Eigen::Matrix3d r = so3_exp(Eigen::Vector3d(n(rng), n(rng), n(rng)));
+    const double thin = std::pow(10.0, log_scale(rng) - 3.0);
+    const Eigen::Vector3d eigenvalues =
+        arc ? Eigen::Vector3d(std::pow(10.0, log_scale(rng)), thin, thin)
+            : Eigen::Vector3d(std::pow(10.0, log_scale(rng)), std::pow(10.0, log_scale(rng)),
+                              std::pow(10.0, log_scale(rng)));
+    return Eigen::Matrix3d(r * eigenvalues.asDiagonal() * r.transpose());
+  };
+  int lines = 0, others = 0;
+  for (const double gate : {0.02, 0.1, 0.3}) {
+    for (int i = 0; i < 20000; ++i) {
+      const bool arcs = i % 2 == 0;
+      const Eigen::Matrix3d cq = random_covariance(arcs);
+      const Eigen::Matrix3d cp = random_covariance(arcs);
+      const bool expected = combined_spread(cq, cp, 1e-6) < gate;
+      ASSERT_EQ(combined_is_line(cq, cp, 1e-6, gate), expected)
+          << "gate " << gate << ", spread " << combined_spread(cq, cp, 1e-6);
+      (expected ? lines : others)++;
+    }
+  }
+  EXPECT_GT(lines, 10000);
+  EXPECT_GT(others, 10000);
 }
 
 /// Points along a straight arc in x at (y, z), plus, with `plane`, a patch z = 4.5 over x, y.

@@ -61,6 +61,26 @@ inline bool combined_is_round(const Eigen::Matrix3d& cq, const Eigen::Matrix3d& 
   return combined_isotropy(cq, rotated_cp, lambda) > max_isotropy;
 }
 
+/// combined_spread(cq, rotated_cp, lambda) < line_gate, from the trace, the sum of principal
+/// 2x2 minors and the Frobenius norm where they settle it (most distributions are clearly
+/// planes or clearly lines), else from the eigenvalues. With eigenvalues 0 < a <= b <= c of the
+/// combined covariance, s = a + b + c, p = ab + ac + bc and q = a^2 + b^2 + c^2 (= ||.||_F^2):
+///   c >= q / s (q <= c s) and b c <= p, so b / c <= p / c^2 <= p s^2 / q^2;
+///   p <= b^2 + 2 b c (a <= b) and c^2 <= q, so b / c >= sqrt(1 + p / c^2) - 1
+///   >= sqrt(1 + p / q) - 1, which is >= g when p / q >= 2 g + g^2.
+inline bool combined_is_line(const Eigen::Matrix3d& cq, const Eigen::Matrix3d& rotated_cp,
+                             double lambda, double line_gate) {
+  const Eigen::Matrix3d m = cq + rotated_cp + lambda * Eigen::Matrix3d::Identity();
+  const double s = m.trace();
+  const double p = m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0) + m(0, 0) * m(2, 2) - m(0, 2) * m(2, 0) +
+                   m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1);
+  const double q = m.squaredNorm();
+  // Margins keep rounding in the bounds from deciding a case the eigenvalues would not.
+  if (p * s * s < line_gate * q * q * (1.0 - 1e-9)) return true;
+  if (p > (2.0 * line_gate + line_gate * line_gate) * q * (1.0 + 1e-9)) return false;
+  return combined_spread(cq, rotated_cp, lambda) < line_gate;
+}
+
 struct IcpTerm {
   /// E_icp.
   double energy = 0.0;
