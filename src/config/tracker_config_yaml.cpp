@@ -146,6 +146,7 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node, const TrackerConf
   registration.read("lambda", r.lambda);
   registration.read_enum("cov_energy", r.cov_energy, kCovEnergies);
   registration.read_enum("cov_hessian", r.cov_hessian, kCovHessians);
+  registration.read("robust_newton", r.robust_newton);
   registration.read_enum("correspondence", r.correspondence, kCorrespondences);
   registration.read("max_correspondence_distance", r.max_correspondence_distance);
   registration.read("max_iterations", r.max_iterations);
@@ -269,6 +270,7 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "lambda" << YAML::Value << r.lambda;
   out << YAML::Key << "cov_energy" << YAML::Value << enum_name(r.cov_energy, kCovEnergies);
   out << YAML::Key << "cov_hessian" << YAML::Value << enum_name(r.cov_hessian, kCovHessians);
+  out << YAML::Key << "robust_newton" << YAML::Value << r.robust_newton;
   out << YAML::Key << "correspondence" << YAML::Value
       << enum_name(r.correspondence, kCorrespondences);
   out << YAML::Key << "max_correspondence_distance" << YAML::Value << r.max_correspondence_distance;

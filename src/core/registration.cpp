@@ -11,6 +11,7 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <cmath>
 
 namespace litamin2 {
 namespace {
@@ -44,6 +45,10 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
   out.cost += w_icp * icp.energy;
   out.gradient += w_icp * icp.gradient;
   out.hessian += w_icp * icp.hessian;
+  if (config.robust_newton) {
+    out.robust_curvature.selfadjointView<Eigen::Upper>().rankUpdate(
+        icp.gradient, robust_weight_curvature(icp.energy, config.sigma_icp));
+  }
   ++out.correspondences;
   if (w_icp >= 0.5) ++out.inliers;
   if (timed) {
@@ -88,9 +93,40 @@ void add_into(CostEvaluation& total, const CostEvaluation& part) {
   total.gradient += part.gradient;
   total.hessian += part.hessian;
   total.cov_curvature += part.cov_curvature;
+  total.robust_curvature += part.robust_curvature;
   total.correspondences += part.correspondences;
   total.matched += part.matched;
   total.inliers += part.inliers;
+}
+
+/// An LDLT that succeeded with a positive definite D.
+bool positive_definite(const Eigen::LDLT<Matrix6d>& ldlt) {
+  return ldlt.info() == Eigen::Success && ldlt.isPositive() && (ldlt.vectorD().array() > 0.0).all();
+}
+
+/// The robust Newton step may be at most this many times longer than the weighted step, in
+/// rotation and in translation. Near the optimum the weighted (fixed-weight) iteration shrinks
+/// its steps by a near-constant ratio r (0.3-0.4 on sparse scans), so the remaining distance is
+/// its step over 1 - r, well within 3 steps; where many correspondences are past sigma the
+/// capped curvature leaves H nearly singular, the robust step is much longer, and the weighted
+/// one, which never increases the cost's majoriser, is taken instead.
+constexpr double kMaxRobustStepRatio = 3.0;
+
+/// The Newton step with the robust weight's curvature (RegistrationConfig::robust_newton):
+/// solves (H - robust) xi = -g where that matrix is positive definite and the step passes
+/// kMaxRobustStepRatio against `weighted_step` (H xi = -g); else returns `weighted_step`.
+Vector6d robust_newton_step(const Matrix6d& hessian, const Matrix6d& robust_upper,
+                            const Vector6d& gradient, const Vector6d& weighted_step) {
+  const Matrix6d robust = robust_upper.selfadjointView<Eigen::Upper>();
+  const Eigen::LDLT<Matrix6d> solver(hessian - robust);
+  if (!positive_definite(solver)) return weighted_step;
+  const Vector6d step = solver.solve(-gradient);
+  if (!step.allFinite() ||
+      step.head<3>().norm() > kMaxRobustStepRatio * weighted_step.head<3>().norm() ||
+      step.tail<3>().norm() > kMaxRobustStepRatio * weighted_step.tail<3>().norm()) {
+    return weighted_step;
+  }
+  return step;
 }
 
 }  // namespace
@@ -172,10 +208,9 @@ RegistrationResult register_distributions(const std::vector<Distribution>& sourc
       return result;
     }
     // Newton step H xi = -g. Where the Cov term's curvature makes H indefinite, drop it.
-    Eigen::LDLT<Matrix6d> solver(eval.hessian);
-    if (solver.info() != Eigen::Success || !solver.isPositive() ||
-        (solver.vectorD().array() <= 0.0).any()) {
-      Matrix6d hessian = eval.hessian;
+    Matrix6d hessian = eval.hessian;
+    Eigen::LDLT<Matrix6d> solver(hessian);
+    if (!positive_definite(solver)) {
       hessian.topLeftCorner<3, 3>() -= eval.cov_curvature;
       result.hessian = hessian;
       solver.compute(hessian);
@@ -184,7 +219,12 @@ RegistrationResult register_distributions(const std::vector<Distribution>& sourc
         return result;
       }
     }
-    const Vector6d xi = solver.solve(-eval.gradient);
+    Vector6d xi = solver.solve(-eval.gradient);
+    // Near the optimum only (RegistrationConfig::robust_newton): within the re-grid tolerances.
+    if (active.robust_newton && xi.allFinite() && xi.tail<3>().norm() < active.regrid_translation &&
+        xi.head<3>().norm() < active.regrid_rotation_deg * (M_PI / 180.0)) {
+      xi = robust_newton_step(hessian, eval.robust_curvature, eval.gradient, xi);
+    }
     if (!xi.allFinite()) {
       result.valid = false;
       return result;

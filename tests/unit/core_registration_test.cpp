@@ -15,6 +15,7 @@
 
 #include <memory>
 
+#include <cstdio>
 #include <cstring>
 
 namespace litamin2 {
@@ -92,6 +93,40 @@ TEST(Registration, PredictionSizedErrorsWithDefaults) {
       EXPECT_LT(Eigen::AngleAxisd(error.linear()).angle() * 180.0 / M_PI, 0.1);
     }
   }
+}
+
+TEST(Registration, RobustNewtonReachesTheWeightedIterationsPoseInFewerIterations) {
+  // The robust weight's curvature changes the step, not the gradient: both iterations stop at
+  // the same pose (within the convergence tolerance), the robust Newton one sooner. A sparse
+  // scene (3,000 points, a few per voxel, as a 16-beam scan) is where the weighted iteration
+  // converges slowly: 16 against 9 iterations over the three cases when written.
+  constexpr int kSparsePoints = 3000;
+  const PointCloud target = testing::synthetic_scene(1, kSparsePoints);
+  int weighted_total = 0, robust_total = 0;
+  for (const auto& [rotation, translation] :
+       {std::pair{Eigen::Vector3d(0, 0, 2), Eigen::Vector3d(0.4, 0.1, 0.0)},
+        std::pair{Eigen::Vector3d(0.5, -0.5, -3), Eigen::Vector3d(-0.3, 0.3, 0.1)},
+        std::pair{Eigen::Vector3d(0, 0.3, 1), Eigen::Vector3d(0.2, -0.2, 0.05)}}) {
+    const Eigen::Isometry3d truth = make_pose(rotation, translation);
+    const PointCloud source =
+        testing::transformed(testing::synthetic_scene(2, kSparsePoints), truth.inverse());
+    RegistrationConfig config;
+    config.robust_newton = false;
+    const RegistrationResult weighted =
+        testing::register_clouds(target, source, Eigen::Isometry3d::Identity(), config);
+    config.robust_newton = true;
+    const RegistrationResult robust =
+        testing::register_clouds(target, source, Eigen::Isometry3d::Identity(), config);
+    ASSERT_TRUE(weighted.valid && robust.valid);
+    const Eigen::Isometry3d between = weighted.pose.inverse() * robust.pose;
+    EXPECT_LT(between.translation().norm(), 1e-3);
+    EXPECT_LT(Eigen::AngleAxisd(between.linear()).angle() * 180.0 / M_PI, 0.01);
+    weighted_total += weighted.iterations;
+    robust_total += robust.iterations;
+  }
+  EXPECT_LT(robust_total, weighted_total);
+  std::printf("Newton iterations over three registrations: weighted %d, robust %d\n",
+              weighted_total, robust_total);
 }
 
 TEST(Registration, KdTreeAndVoxelLookupAgree) {

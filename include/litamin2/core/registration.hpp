@@ -43,6 +43,11 @@ struct CostEvaluation {
   Matrix6d hessian = Matrix6d::Zero();
   /// The Cov term's f d2f part alone (rotation block), so the solver can drop it.
   Eigen::Matrix3d cov_curvature = Eigen::Matrix3d::Zero();
+  /// The ICP term's robust-weight curvature, -sum w'(E) g g^T with each correspondence's
+  /// factor capped where its cost is not convex (RegistrationConfig::robust_newton): positive
+  /// semi-definite, subtracted from `hessian` for the Newton step. Not in `hessian`, which
+  /// stays the weighted Gauss-Newton Hessian that the odometry covariance is made from.
+  Matrix6d robust_curvature = Matrix6d::Zero();
   /// Correspondences used (after the registration gates).
   int correspondences = 0;
   /// Source distributions with a map distribution within the search radius (before the gates).
