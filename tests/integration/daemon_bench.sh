@@ -135,14 +135,17 @@ if [ -n "${TRACKER:-}" ]; then
   echo "$TRACKER" > tracker.yaml
   tracker_args=(--config "$work/tracker.yaml")
 fi
+# Also redone when the offline tool was rebuilt (its checksum is kept beside the config).
+odometry_sum=$(cksum < "$tools/odometry/litamin2-odometry")
 offline_run() {
   local input=$1 output=$2
+  local made_by="${TRACKER:-} $odometry_sum"
   if [ ! -f "$output/stats.json" ] ||
-    [ "$(cat "$output/tracker.txt" 2>/dev/null)" != "${TRACKER:-}" ]; then
+    [ "$(cat "$output/tracker.txt" 2>/dev/null)" != "$made_by" ]; then
     rm -rf "$output"
     "${daemon_cpu[@]}" "$tools/odometry/litamin2-odometry" "$input" --output "$output" \
       --threads 1 --quiet "${tracker_args[@]}" > "$work/odometry.log" 2>&1
-    echo "${TRACKER:-}" > "$output/tracker.txt"
+    echo "$made_by" > "$output/tracker.txt"
   fi
 }
 offline_run seq offline
