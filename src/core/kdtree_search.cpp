@@ -8,18 +8,12 @@
 namespace litamin2 {
 namespace {
 
-/// nanoflann's view of the map's distribution means, copied into one packed array: a
-/// Distribution is several hundred bytes, so reading the means in place costs a cache line per
-/// point visited while the tree is built and searched.
+/// nanoflann's view of the map's distribution means.
 struct MeanCloud {
-  explicit MeanCloud(const std::vector<Distribution>& distributions) {
-    means.reserve(distributions.size());
-    for (const Distribution& distribution : distributions) means.push_back(distribution.mean);
-  }
-  std::vector<Eigen::Vector3d> means;
-  std::size_t kdtree_get_point_count() const { return means.size(); }
+  const std::vector<Distribution>& distributions;
+  std::size_t kdtree_get_point_count() const { return distributions.size(); }
   double kdtree_get_pt(std::size_t index, std::size_t dim) const {
-    return means[index](static_cast<int>(dim));
+    return distributions[index].mean(static_cast<int>(dim));
   }
   template <class BoundingBox>
   bool kdtree_get_bbox(BoundingBox&) const {
@@ -34,13 +28,13 @@ class KdTreeSearch final : public CorrespondenceSearch {
 
  public:
   explicit KdTreeSearch(const VoxelMap& map)
-      : cloud_(map.distributions()),
+      : cloud_{map.distributions()},
         tree_(3, cloud_, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {
     tree_.buildIndex();
   }
 
   int nearest(const Eigen::Vector3d& query, double max_distance_sq) const override {
-    if (cloud_.means.empty()) return -1;
+    if (cloud_.distributions.empty()) return -1;
     int index = -1;
     double distance_sq = 0.0;
     nanoflann::KNNResultSet<double, int> result(1);
@@ -54,7 +48,7 @@ class KdTreeSearch final : public CorrespondenceSearch {
     double distances_sq[2] = {0.0, 0.0};
     out = NearestTwo();
     out.second_distance = std::numeric_limits<double>::infinity();
-    if (cloud_.means.empty()) return true;
+    if (cloud_.distributions.empty()) return true;
     nanoflann::KNNResultSet<double, int> result(2);
     result.init(indices, distances_sq);
     tree_.findNeighbors(result, query.data(), nanoflann::SearchParams());
