@@ -86,6 +86,23 @@ void BM_Correspondences(benchmark::State& state) {
 }
 BENCHMARK(BM_Correspondences)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
+/// Building the correspondence search over a map of ~2,300 distributions (the real KITTI
+/// target inserted five times, 30 m apart), as the tracker does at every keyframe: arg method.
+void BM_SearchBuild(benchmark::State& state) {
+  VoxelMap map(VoxelizerConfig{}, VoxelMapConfig{});
+  for (int k = 0; k < 5; ++k) {
+    map.insert(real_pair().target, Eigen::Isometry3d(Eigen::Translation3d(30.0 * k, 0.0, 0.0)));
+  }
+  for (auto _ : state) {
+    const auto search =
+        make_correspondence_search(static_cast<CorrespondenceMethod>(state.range(0)), map);
+    benchmark::DoNotOptimize(search.get());
+  }
+  state.SetLabel(std::to_string(map.distributions().size()) + " means, " +
+                 (state.range(0) == 0 ? "voxel27" : "kdtree"));
+}
+BENCHMARK(BM_SearchBuild)->Arg(1)->Unit(benchmark::kMicrosecond);
+
 /// One cost evaluation (correspondences + terms + reduction): args mode, threads.
 void BM_CostEvaluation(benchmark::State& state) {
   VoxelMap map(VoxelizerConfig{}, VoxelMapConfig{});

@@ -1,0 +1,121 @@
+#include "litamin2/core/mean_kdtree.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace litamin2 {
+namespace {
+
+/// Points per leaf at most.
+constexpr int kLeafSize = 10;
+
+double squared_distance(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  double sum = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double d = a(i) - b(i);
+    sum += d * d;
+  }
+  return sum;
+}
+
+}  // namespace
+
+/// The `count` (1 or 2) best points so far; a point replaces one only when strictly nearer.
+struct MeanKdTree::Best {
+  int count;
+  int indices[2] = {-1, -1};
+  double distances_sq[2];
+  Best(int count, double bound) : count(count) {
+    distances_sq[0] = count == 1 ? bound : std::numeric_limits<double>::infinity();
+    distances_sq[1] = count == 2 ? bound : std::numeric_limits<double>::infinity();
+  }
+  /// The distance a point must beat to enter.
+  double worst() const { return distances_sq[count - 1]; }
+  void add(double distance_sq, int index) {
+    if (!(distance_sq < worst())) return;
+    if (count == 2 && distance_sq < distances_sq[0]) {
+      distances_sq[1] = distances_sq[0];
+      indices[1] = indices[0];
+      distances_sq[0] = distance_sq;
+      indices[0] = index;
+    } else {
+      distances_sq[count - 1] = distance_sq;
+      indices[count - 1] = index;
+    }
+  }
+};
+
+MeanKdTree::MeanKdTree(const std::vector<Eigen::Vector3d>& points) {
+  const int n = static_cast<int>(points.size());
+  std::vector<int> order(points.size());
+  for (int i = 0; i < n; ++i) order[i] = i;
+  nodes_.reserve(2 * static_cast<std::size_t>(n / kLeafSize + 1));
+  if (n > 0) build(order, points, 0, n);
+  points_.reserve(points.size());
+  for (const int i : order) points_.push_back(points[i]);
+  index_ = std::move(order);
+}
+
+int MeanKdTree::build(std::vector<int>& order, const std::vector<Eigen::Vector3d>& points,
+                      int begin, int end) {
+  const int id = static_cast<int>(nodes_.size());
+  nodes_.push_back(Node{begin, end});
+  if (end - begin <= kLeafSize) return id;
+  Eigen::Vector3d lo = points[order[begin]], hi = lo;
+  for (int k = begin + 1; k < end; ++k) {
+    lo = lo.cwiseMin(points[order[k]]);
+    hi = hi.cwiseMax(points[order[k]]);
+  }
+  int dim = 0;
+  (hi - lo).maxCoeff(&dim);
+  const int mid = begin + (end - begin) / 2;
+  std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
+                   [&](int a, int b) { return points[a](dim) < points[b](dim); });
+  const double split = points[order[mid]](dim);
+  const int left = build(order, points, begin, mid);
+  const int right = build(order, points, mid, end);
+  Node& node = nodes_[id];
+  node.left = left;
+  node.right = right;
+  node.dim = dim;
+  node.split = split;
+  return id;
+}
+
+void MeanKdTree::search(int node_id, const Eigen::Vector3d& query, Best& best) const {
+  const Node& node = nodes_[node_id];
+  if (node.left < 0) {
+    for (int k = node.begin; k < node.end; ++k) {
+      best.add(squared_distance(query, points_[k]), k);
+    }
+    return;
+  }
+  // Points on the far side are at least |diff| away along the split dimension.
+  const double diff = query(node.dim) - node.split;
+  const int near = diff < 0.0 ? node.left : node.right;
+  const int far = diff < 0.0 ? node.right : node.left;
+  search(near, query, best);
+  if (diff * diff < best.worst()) search(far, query, best);
+}
+
+int MeanKdTree::nearest(const Eigen::Vector3d& query, double max_distance_sq,
+                        double& distance_sq) const {
+  if (nodes_.empty()) return -1;
+  Best best(1, max_distance_sq);
+  search(0, query, best);
+  if (best.indices[0] < 0) return -1;
+  distance_sq = best.distances_sq[0];
+  return index_[best.indices[0]];
+}
+
+void MeanKdTree::nearest_two(const Eigen::Vector3d& query, int indices[2],
+                             double distances_sq[2]) const {
+  Best best(2, std::numeric_limits<double>::infinity());
+  if (!nodes_.empty()) search(0, query, best);
+  for (int i = 0; i < 2; ++i) {
+    indices[i] = best.indices[i] < 0 ? -1 : index_[best.indices[i]];
+    distances_sq[i] = best.distances_sq[i];
+  }
+}
+
+}  // namespace litamin2
