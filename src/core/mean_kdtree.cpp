@@ -9,15 +9,6 @@ namespace {
 /// Points per leaf at most.
 constexpr int kLeafSize = 10;
 
-double squared_distance(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  double sum = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    const double d = a(i) - b(i);
-    sum += d * d;
-  }
-  return sum;
-}
-
 }  // namespace
 
 /// The `count` (1 or 2) best points so far; a point replaces one only when strictly nearer.
@@ -86,7 +77,7 @@ void MeanKdTree::search(int node_id, const Eigen::Vector3d& query, Best& best) c
   const Node& node = nodes_[node_id];
   if (node.left < 0) {
     for (int k = node.begin; k < node.end; ++k) {
-      best.add(squared_distance(query, points_[k]), k);
+      best.add(squared_distance_xyz(query, points_[k]), k);
     }
     return;
   }

@@ -1,20 +1,11 @@
 #include "litamin2/core/nearest_cache.hpp"
 
+#include "litamin2/core/mean_kdtree.hpp"
+
 #include <cmath>
 
 namespace litamin2 {
 namespace {
-
-/// Squared distance summed in x, y, z order, as the kd-tree's metric sums it, so a reused
-/// answer meets the distance limit exactly when a fresh search's would.
-double squared_distance(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  double sum = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    const double d = a(i) - b(i);
-    sum += d * d;
-  }
-  return sum;
-}
 
 /// Margin on the reuse test so that rounding in the distances can never decide it.
 constexpr double kMargin = 1e-9;
@@ -32,7 +23,7 @@ int NearestCache::nearest(std::size_t slot, const Eigen::Vector3d& query, double
     if (2.0 * moved + kMargin < entry.found.second_distance - std::sqrt(entry.found.distance_sq)) {
       ++entry.reused;
       const int index = entry.found.index;
-      return squared_distance(query, targets_[index].mean) < max_distance_sq ? index : -1;
+      return squared_distance_xyz(query, targets_[index].mean) < max_distance_sq ? index : -1;
     }
   }
   ++entry.searched;

@@ -101,18 +101,32 @@ TEST(CovTerm, ZeroForIdenticalShapesAndTranslationFree) {
   EXPECT_GT(rotated.f, 0.0);
 }
 
+/// A source mean p at a random pose and the precision of Eq. 3 from two nearly flat covariances.
+struct IcpCase {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d p;
+  Eigen::Matrix3d precision;
+};
+
+IcpCase random_icp_case(Random& rnd) {
+  IcpCase c;
+  c.pose.linear() = rnd.rotation();
+  c.pose.translation() = rnd.vector(20.0);
+  c.p = rnd.vector(30.0);
+  Eigen::Matrix3d cp_inv, cq_inv;
+  const Eigen::Matrix3d cp = rnd.covariance(1e-3, &cp_inv);
+  const Eigen::Matrix3d cq = rnd.covariance(1e-3, &cq_inv);
+  c.precision = combined_precision(cq, c.pose.linear() * cp * c.pose.linear().transpose(), 1e-6);
+  return c;
+}
+
 TEST(IcpTerm, GradientMatchesFiniteDifferencesAndHessianIsGaussNewton) {
   Random rnd;
   for (int trial = 0; trial < 50; ++trial) {
-    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    pose.linear() = rnd.rotation();
-    pose.translation() = rnd.vector(20.0);
-    const Eigen::Vector3d p = rnd.vector(30.0);
-    Eigen::Matrix3d cp_inv, cq_inv;
-    const Eigen::Matrix3d cp = rnd.covariance(1e-3, &cp_inv);
-    const Eigen::Matrix3d cq = rnd.covariance(1e-3, &cq_inv);
-    const Eigen::Matrix3d precision =
-        combined_precision(cq, pose.linear() * cp * pose.linear().transpose(), 1e-6);
+    const IcpCase icp_case = random_icp_case(rnd);
+    const Eigen::Isometry3d& pose = icp_case.pose;
+    const Eigen::Vector3d& p = icp_case.p;
+    const Eigen::Matrix3d& precision = icp_case.precision;
     EXPECT_NEAR(precision.norm(), 1.0, 1e-12);
     const Eigen::Vector3d q = pose * p + rnd.vector(0.5);
 
@@ -185,15 +199,10 @@ TEST(RobustWeight, NewtonHessianOfTheRobustIcpTermMatchesFiniteDifferences) {
   const double sigma = 0.1;
   int capped = 0;
   for (int trial = 0; trial < 40; ++trial) {
-    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    pose.linear() = rnd.rotation();
-    pose.translation() = rnd.vector(20.0);
-    const Eigen::Vector3d p = rnd.vector(30.0);
-    Eigen::Matrix3d cp_inv, cq_inv;
-    const Eigen::Matrix3d cp = rnd.covariance(1e-3, &cp_inv);
-    const Eigen::Matrix3d cq = rnd.covariance(1e-3, &cq_inv);
-    const Eigen::Matrix3d precision =
-        combined_precision(cq, pose.linear() * cp * pose.linear().transpose(), 1e-6);
+    const IcpCase icp_case = random_icp_case(rnd);
+    const Eigen::Isometry3d& pose = icp_case.pose;
+    const Eigen::Vector3d& p = icp_case.p;
+    const Eigen::Matrix3d& precision = icp_case.precision;
     // Residuals from 0.01 to 0.5 m: energies on both sides of sigma^2 = 0.01.
     const Eigen::Vector3d offset = rnd.vector(1.0).normalized() * rnd.uniform(0.01, 0.5);
     const Eigen::Vector3d q = pose * p + offset;

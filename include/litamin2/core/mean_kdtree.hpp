@@ -3,13 +3,24 @@
 /// means' index behind KdTreeSearch (correspondence_search.hpp). Built once per keyframe, so
 /// its build is on the tracker's path: one bounding-box pass and one nth_element partition per
 /// level, over points copied in tree order (a leaf's points are contiguous). Distances are
-/// summed in x, y, z order, as NearestCache's reuse test sums them.
+/// squared_distance_xyz, as NearestCache's reuse test computes them.
 
 #include <Eigen/Core>
 
 #include <vector>
 
 namespace litamin2 {
+
+/// Squared distance summed in x, y, z order: the metric of MeanKdTree, and of NearestCache's
+/// reuse test, which must meet the distance limit exactly when a fresh search would.
+inline double squared_distance_xyz(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  double sum = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double d = a(i) - b(i);
+    sum += d * d;
+  }
+  return sum;
+}
 
 class MeanKdTree {
  public:
