@@ -113,6 +113,8 @@ SweepMotionResult register_with_sweep_motion(
     if (!(distribution_times.spread[i] <= config.max_time_spread_s)) times[i] = 0.0;
   NearestCache cache(search, map.distributions(), source.size());
   RegistrationConfig active = registration;
+  // This solver takes the weighted step (RegistrationConfig::robust_newton's curvature unused).
+  active.robust_newton = false;
   std::vector<Distribution> moved;
   Vector6d prior_precision;
   prior_precision << Eigen::Vector3d::Constant(1.0 / (config.angular_sigma * config.angular_sigma)),
