@@ -88,9 +88,10 @@ struct RegistrationConfig {
   /// correspondences are past sigma, the path (and so the basin it ends in) is the paper's.
   /// With the weight held fixed (false, the paper's iteratively reweighted step) the iteration
   /// converges only linearly on sparse scans (the builtin VLP-16 loop: 5.7 iterations a frame,
-  /// 3.6 with this). The gradient, and so the pose it converges to, is the same either way.
-  /// The odometry covariance stays the weighted Gauss-Newton Hessian's. The motion within the
-  /// sweep (SweepMotionConfig) is estimated with the weighted step.
+  /// 3.8 with this; docs/accuracy.md, "The robust weight's curvature in Newton's step"). The
+  /// gradient, and so the pose it converges to, is the same either way. The odometry covariance
+  /// stays the weighted Gauss-Newton Hessian's. The motion within the sweep (SweepMotionConfig) is
+  /// estimated with the weighted step.
   bool robust_newton = true;
   /// Form of the Cov term's energy.
   CovEnergy cov_energy = CovEnergy::kLinear;
