@@ -58,11 +58,28 @@ int MeanKdTree::build(std::vector<int>& order, const std::vector<Eigen::Vector3d
     hi = hi.cwiseMax(points[order[k]]);
   }
   int dim = 0;
-  (hi - lo).maxCoeff(&dim);
-  const int mid = begin + (end - begin) / 2;
-  std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
-                   [&](int a, int b) { return points[a](dim) < points[b](dim); });
-  const double split = points[order[mid]](dim);
+  const double extent = (hi - lo).maxCoeff(&dim);
+  if (!(extent > 0.0)) return id;  // all points equal: one leaf
+  // The midpoint of the widest side splits without a selection: one branch-free pass puts the
+  // points below it first. Both sides hold a point (the extremes), so the recursion ends.
+  double split = 0.5 * (lo(dim) + hi(dim));
+  int mid = begin;
+  for (int k = begin; k < end; ++k) {
+    const int point = order[k];
+    const int other = order[mid];
+    const bool below = points[point](dim) < split;
+    order[k] = below ? other : point;
+    order[mid] = below ? point : other;
+    mid += below;
+  }
+  // A lopsided split (clustered points) falls back to the median, which bounds the depth.
+  const int size = end - begin;
+  if (8 * std::min(mid - begin, end - mid) < size) {
+    mid = begin + size / 2;
+    std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
+                     [&](int a, int b) { return points[a](dim) < points[b](dim); });
+    split = points[order[mid]](dim);
+  }
   const int left = build(order, points, begin, mid);
   const int right = build(order, points, mid, end);
   Node& node = nodes_[id];

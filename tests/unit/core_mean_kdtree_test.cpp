@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <random>
 
@@ -105,6 +106,46 @@ TEST(MeanKdTree, PointsSharingACoordinateAreAllFound) {
     EXPECT_EQ(got_d2[0], 0.0);
     EXPECT_EQ(got_d2[1], 9.0);  // a grid neighbour 3 m away
   }
+}
+
+/// Every point's own query finds it (or a point equal to it) at distance zero, and a query
+/// anywhere finds what the linear scan finds.
+void expect_agrees_with_linear_scan(const std::vector<Eigen::Vector3d>& points) {
+  const MeanKdTree tree(points);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < static_cast<int>(points.size()); ++i) {
+    const Eigen::Vector3d query = points[i] + 0.01 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    int expected[2], got[2];
+    double expected_d2[2], got_d2[2];
+    linear_two(points, query, expected, expected_d2);
+    tree.nearest_two(query, got, got_d2);
+    ASSERT_EQ(got_d2[0], expected_d2[0]) << "point " << i;
+    ASSERT_EQ(got_d2[1], expected_d2[1]) << "point " << i;
+    ASSERT_EQ(points[got[0]], points[expected[0]]) << "point " << i;
+  }
+}
+
+TEST(MeanKdTree, EqualPointsMoreThanALeafHolds) {
+  // No split can separate them: the build must stop at one leaf, and all are found.
+  std::vector<Eigen::Vector3d> points(40, Eigen::Vector3d(1.0, 2.0, 3.0));
+  points.emplace_back(5.0, 2.0, 3.0);
+  expect_agrees_with_linear_scan(points);
+}
+
+TEST(MeanKdTree, LopsidedCloudsAreSplitAtTheirMedian) {
+  // A dense blob with a few far points: the widest side's midpoint would cut off only the far
+  // points, so the build falls back to the median (and keeps its depth bounded).
+  std::mt19937 rng(3);
+  std::normal_distribution<double> blob(0.0, 0.01);
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 3000; ++i) points.emplace_back(blob(rng), blob(rng), blob(rng));
+  for (int i = 0; i < 5; ++i) points.emplace_back(100.0 * (i + 1), 0.0, 0.0);
+  expect_agrees_with_linear_scan(points);
+  // Points at doubling distances: every midpoint split would peel off one point.
+  std::vector<Eigen::Vector3d> doubling;
+  for (int i = 0; i < 60; ++i) doubling.emplace_back(std::ldexp(1.0, i - 30), 0.0, 0.0);
+  expect_agrees_with_linear_scan(doubling);
 }
 
 }  // namespace

@@ -1,9 +1,11 @@
 #pragma once
 /// A static kd-tree over 3D points for exact nearest and second-nearest queries: the map
 /// means' index behind KdTreeSearch (correspondence_search.hpp). Built once per keyframe, so
-/// its build is on the tracker's path: one bounding-box pass and one nth_element partition per
-/// level, over points copied in tree order (a leaf's points are contiguous). Distances are
-/// squared_distance_xyz, as NearestCache's reuse test computes them.
+/// its build is on the tracker's path: per node, one bounding-box pass and one branch-free
+/// partition at the midpoint of the widest side (the median, by nth_element, only where the
+/// midpoint would leave under 1/8 of the points on one side); points are copied in tree order
+/// (a leaf's points are contiguous). Distances are squared_distance_xyz, as NearestCache's
+/// reuse test computes them.
 
 #include <Eigen/Core>
 
