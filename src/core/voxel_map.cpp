@@ -11,29 +11,48 @@ struct VoxelMap::Cells {
   struct Cell {
     std::uint64_t key = 0;
     VoxelMoments moments;
-    /// The distribution of `moments`, recomputed only when points were added.
-    Distribution cached;
-    /// Points were added since `cached` was computed.
-    bool dirty = true;
+    /// Points were added since the cell's distribution was computed (it is on `dirty_list`).
+    bool dirty = false;
+    /// The slot holds a voxel (false once dropped, until a new voxel reuses it).
+    bool live = false;
     /// Index into distributions_, or -1 while the voxel has too few points.
     int distribution = -1;
   };
-  /// Cells in insertion order (so iteration, and thus results, are deterministic).
+  /// Slots of voxels; a dropped voxel's slot is reused by the next new one, so the slots of
+  /// the voxels kept never move.
   std::vector<Cell> cells;
+  std::vector<int> free_slots;
   tsl::robin_map<std::uint64_t, int, VoxelKeyHash> cell_of_key;
+  /// Slots whose moments changed since the distributions were last brought up to date, in
+  /// the order they first changed (so the results are deterministic).
+  std::vector<int> dirty_list;
+  /// distribution_cell[i] is the slot of distributions_[i].
+  std::vector<int> distribution_cell;
 
   /// The cell of voxel `index` (edge `voxel_size`), added empty (its moments' origin at the
   /// voxel's centre) if it is not there yet; marked dirty, as the caller adds to it.
   Cell& dirty_cell(const VoxelIndex& index, double voxel_size) {
     const std::uint64_t key = pack_voxel(index);
-    const auto [it, inserted] = cell_of_key.try_emplace(key, static_cast<int>(cells.size()));
+    const int next_slot = free_slots.empty() ? static_cast<int>(cells.size()) : free_slots.back();
+    const auto [it, inserted] = cell_of_key.try_emplace(key, next_slot);
     if (inserted) {
-      Cell& cell = cells.emplace_back();
+      if (free_slots.empty()) {
+        cells.emplace_back();
+      } else {
+        free_slots.pop_back();
+      }
+      Cell& cell = cells[next_slot];
+      cell = Cell();
       cell.key = key;
+      cell.live = true;
       cell.moments.origin = (index.cast<double>() + Eigen::Vector3d::Constant(0.5)) * voxel_size;
     }
-    Cell& cell = cells[it->second];
-    cell.dirty = true;
+    const int slot = it->second;
+    Cell& cell = cells[slot];
+    if (!cell.dirty) {
+      cell.dirty = true;
+      dirty_list.push_back(slot);
+    }
     return cell;
   }
 };
@@ -102,34 +121,50 @@ void VoxelMap::merge_grid_voxels(const GridVoxels& voxels, const Eigen::Isometry
 bool VoxelMap::drop_far_cells(const Eigen::Vector3d& position) {
   Cells& c = *cells_;
   const double radius_sq = config_.radius * config_.radius;
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < c.cells.size(); ++i) {
-    if ((c.cells[i].moments.origin - position).squaredNorm() <= radius_sq) {
-      if (kept != i) c.cells[kept] = std::move(c.cells[i]);
-      ++kept;
-    }
+  bool dropped = false;
+  for (std::size_t slot = 0; slot < c.cells.size(); ++slot) {
+    Cells::Cell& cell = c.cells[slot];
+    if (!cell.live || (cell.moments.origin - position).squaredNorm() <= radius_sq) continue;
+    if (cell.distribution >= 0) remove_distribution(cell.distribution);
+    c.cell_of_key.erase(cell.key);
+    cell.live = false;
+    cell.dirty = false;  // a stale entry of dirty_list is skipped
+    c.free_slots.push_back(static_cast<int>(slot));
+    dropped = true;
   }
-  if (kept == c.cells.size()) return false;
-  c.cells.resize(kept);
-  c.cell_of_key.clear();
-  for (std::size_t i = 0; i < c.cells.size(); ++i) {
-    c.cell_of_key.emplace(c.cells[i].key, static_cast<int>(i));
+  return dropped;
+}
+
+void VoxelMap::remove_distribution(int index) {
+  Cells& c = *cells_;
+  c.cells[c.distribution_cell[index]].distribution = -1;
+  const int last = static_cast<int>(distributions_.size()) - 1;
+  if (index != last) {
+    distributions_[index] = distributions_[last];
+    c.distribution_cell[index] = c.distribution_cell[last];
+    c.cells[c.distribution_cell[index]].distribution = index;
   }
-  return true;
+  distributions_.pop_back();
+  c.distribution_cell.pop_back();
 }
 
 void VoxelMap::rebuild_distributions() {
-  distributions_.clear();
-  for (Cells::Cell& cell : cells_->cells) {
-    cell.distribution = -1;
+  Cells& c = *cells_;
+  for (const int slot : c.dirty_list) {
+    Cells::Cell& cell = c.cells[slot];
+    if (!cell.dirty) continue;  // dropped, or listed twice after its slot was reused
+    cell.dirty = false;
     if (cell.moments.count < voxels_.min_points) continue;
-    if (cell.dirty) {
-      cell.cached = cell.moments.to_distribution(voxels_.regularizer);
-      cell.dirty = false;
+    const Distribution distribution = cell.moments.to_distribution(voxels_.regularizer);
+    if (cell.distribution >= 0) {
+      distributions_[cell.distribution] = distribution;
+    } else {
+      cell.distribution = static_cast<int>(distributions_.size());
+      distributions_.push_back(distribution);
+      c.distribution_cell.push_back(slot);
     }
-    cell.distribution = static_cast<int>(distributions_.size());
-    distributions_.push_back(cell.cached);
   }
+  c.dirty_list.clear();
 }
 
 int VoxelMap::find(const VoxelIndex& index) const {
@@ -138,7 +173,7 @@ int VoxelMap::find(const VoxelIndex& index) const {
 }
 
 std::size_t VoxelMap::num_voxels() const {
-  return cells_->cells.size();
+  return cells_->cells.size() - cells_->free_slots.size();
 }
 
 }  // namespace litamin2

@@ -50,7 +50,8 @@ class VoxelMap {
   void add_distributions(const std::vector<Distribution>& distributions,
                          const Eigen::Isometry3d& pose);
 
-  /// Distributions of the voxels with enough points, world frame.
+  /// Distributions of the voxels with enough points, world frame. Their order is deterministic
+  /// but not the voxels' (a dropped voxel's place is taken by the last distribution).
   const std::vector<Distribution>& distributions() const { return distributions_; }
   /// Index into distributions() of the voxel at `index`, or -1 if there is none.
   int find(const VoxelIndex& index) const;
@@ -64,6 +65,10 @@ class VoxelMap {
   void merge_grid_voxels(const GridVoxels& voxels, const Eigen::Isometry3d& pose);
   /// Drops the far voxels; true if there were any.
   bool drop_far_cells(const Eigen::Vector3d& position);
+  /// Removes distributions_[index], moving the last one into its place.
+  void remove_distribution(int index);
+  /// Recomputes the distributions of the voxels that changed since the last call (only those:
+  /// a keyframe's update costs what it changes, not the map's size).
   void rebuild_distributions();
 
   struct Cells;
