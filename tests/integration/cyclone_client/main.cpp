@@ -156,7 +156,7 @@ int main(int argc, char** argv) {
       "its nav_msgs/Odometry, using Cyclone DDS (C API) only. Needs CYCLONEDDS_URI."};
   std::string sequence_dir, stream = "cyclone", output, reference, reference_out;
   int domain = 0;
-  double frame_timeout_s = 10.0, match_timeout_s = 30.0, period_s = 0.0;
+  double frame_timeout_s = 10.0, match_timeout_s = 30.0, period_s = 0.0, settle_s = 1.0;
   app.add_option("sequence", sequence_dir, "KITTI sequence folder (velodyne/*.bin)")->required();
   app.add_option("--stream", stream, "stream id: rt/<stream>/points in, rt/<stream>/odom out")
       ->capture_default_str();
@@ -166,6 +166,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--match-timeout", match_timeout_s,
                  "seconds to wait for the daemon's reader and odometry writer")
+      ->capture_default_str();
+  app.add_option("--settle", settle_s,
+                 "seconds to wait after both matches before the first scan, for litamin2d's "
+                 "side of the discovery")
       ->capture_default_str();
   app.add_option("--period", period_s,
                  "seconds at least from one scan's publication to the next (0: as fast as "
@@ -258,6 +262,10 @@ int main(int argc, char** argv) {
   std::printf("matched litamin2d on domain %d: %s -> %s\n", domain, points_name.c_str(),
               odom_name.c_str());
   std::fflush(stdout);
+  // Discovery is not symmetric: this reader can match litamin2d's odometry writer before that
+  // writer has matched this reader. Its odometry is volatile, so an answer published in between
+  // never comes (a CI run lost frame 0 so). Give the other side time to match.
+  if (settle_s > 0.0) std::this_thread::sleep_for(std::chrono::duration<double>(settle_s));
 
   Entity waitset(dds_create_waitset(participant.get()));
   const dds_entity_t readcond = dds_create_readcondition(reader, DDS_ANY_STATE);
