@@ -143,6 +143,8 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node, const TrackerConf
   read_managed(registration, "max_isotropy", r.max_isotropy);
   read_managed(registration, "isotropy_min_share", r.isotropy_min_share);
   read_managed(registration, "line_gate", r.line_gate);
+  registration.read("normal_only_ratio", r.normal_only_ratio);
+  registration.read("normal_only_iterations", r.normal_only_iterations);
   registration.read("lambda", r.lambda);
   registration.read_enum("cov_energy", r.cov_energy, kCovEnergies);
   registration.read_enum("cov_hessian", r.cov_hessian, kCovHessians);
@@ -267,6 +269,8 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "max_isotropy" << YAML::Value << r.max_isotropy;
   out << YAML::Key << "isotropy_min_share" << YAML::Value << r.isotropy_min_share;
   out << YAML::Key << "line_gate" << YAML::Value << r.line_gate;
+  out << YAML::Key << "normal_only_ratio" << YAML::Value << r.normal_only_ratio;
+  out << YAML::Key << "normal_only_iterations" << YAML::Value << r.normal_only_iterations;
   out << YAML::Key << "lambda" << YAML::Value << r.lambda;
   out << YAML::Key << "cov_energy" << YAML::Value << enum_name(r.cov_energy, kCovEnergies);
   out << YAML::Key << "cov_hessian" << YAML::Value << enum_name(r.cov_hessian, kCovHessians);

@@ -40,7 +40,15 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
   }
   // ICP term, Eq. 3, with its robust weight, Eq. 5.
   const Eigen::Matrix3d precision = combined_precision(target.cov, rotated_cov, config.lambda);
-  const IcpTerm icp = evaluate_icp_term(target.mean, y, precision);
+  IcpTerm icp = evaluate_icp_term(target.mean, y, precision);
+  // A plane's normal alone in the gradient (RegistrationConfig::normal_only_ratio, not in the
+  // paper); the energy, its weight and the Hessian keep the whole precision.
+  if (config.normal_only_ratio > 0.0) {
+    Eigen::Matrix3d normal = precision;
+    if (keep_normal_only(normal, config.normal_only_ratio)) {
+      icp.gradient = icp_gradient(y, target.mean - y, normal);
+    }
+  }
   const double w_icp = robust_weight(icp.energy, config.sigma_icp);
   out.cost += w_icp * icp.energy;
   out.gradient += w_icp * icp.gradient;
@@ -131,6 +139,14 @@ Vector6d robust_newton_step(const Matrix6d& hessian, const Matrix6d& robust_uppe
 
 }  // namespace
 
+double regrid_correction(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
+                         const RegistrationConfig& config) {
+  const Eigen::Isometry3d delta = a.inverse() * b;
+  return std::max(
+      delta.translation().norm() / config.regrid_translation,
+      Eigen::AngleAxisd(delta.linear()).angle() / (config.regrid_rotation_deg * M_PI / 180.0));
+}
+
 CostEvaluation evaluate_cost(const std::vector<Distribution>& source, const VoxelMap& map,
                              const CorrespondenceSearch& search, const Eigen::Isometry3d& pose,
                              const RegistrationConfig& config, NearestCache* cache,
@@ -189,6 +205,15 @@ RegistrationResult register_distributions(const std::vector<Distribution>& sourc
   // structure, or a sparse scan of mostly round voxels), the scan is registered with every
   // correspondence instead, as in the paper.
   RegistrationConfig active = config;
+  // The plane's normal alone in the gradient (RegistrationConfig::normal_only_ratio) only once
+  // converged with the whole precision within the re-grid tolerances of `initial` (the re-grid
+  // loop's last pass), for normal_only_iterations weighted Newton steps: far from the optimum
+  // the residuals along the planes are what turn the scan towards the map (with the normals
+  // alone a scan started 10 deg off stayed 8 deg off). The Hessian keeps the whole precision:
+  // along a street the walls' normals hold nothing forward, and a step from their gradient
+  // alone would slide the scan along it.
+  active.normal_only_ratio = 0.0;
+  int normal_only_steps = 0;
   for (int iteration = 0; iteration < config.max_iterations; ++iteration) {
     CostEvaluation eval = evaluate_cost(source, map, search, result.pose, active, &cache);
     if ((active.max_isotropy < 1.0 || active.line_gate > 0.0) &&
@@ -231,8 +256,18 @@ RegistrationResult register_distributions(const std::vector<Distribution>& sourc
     }
     result.pose = apply_left_update(xi, result.pose);
     result.valid = true;
+    if (active.normal_only_ratio > 0.0 && ++normal_only_steps >= config.normal_only_iterations) {
+      result.converged = true;
+      break;
+    }
     if (xi.head<3>().norm() < config.rotation_tolerance &&
         xi.tail<3>().norm() < config.translation_tolerance) {
+      if (active.normal_only_ratio != config.normal_only_ratio &&
+          regrid_correction(initial, result.pose, config) <= 1.0) {
+        active.normal_only_ratio = config.normal_only_ratio;
+        active.robust_newton = false;
+        continue;
+      }
       result.converged = true;
       break;
     }

@@ -8,18 +8,6 @@
 #include <limits>
 
 namespace litamin2 {
-namespace {
-
-/// How far b is from a in units of the regrid tolerances (above 1: re-voxelise).
-double correction(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
-                  const RegistrationConfig& config) {
-  const Eigen::Isometry3d delta = a.inverse() * b;
-  return std::max(
-      delta.translation().norm() / config.regrid_translation,
-      Eigen::AngleAxisd(delta.linear()).angle() / (config.regrid_rotation_deg * M_PI / 180.0));
-}
-
-}  // namespace
 
 RegridLoop::RegridLoop(const RegistrationConfig& config, const Eigen::Isometry3d& initial)
     : config_(config),
@@ -30,7 +18,7 @@ bool RegridLoop::next(const RegistrationResult& result) {
   const int pass = passes_++;
   result_ = result;
   if (!result.valid || pass >= config_.max_regrids) return false;
-  const double moved = correction(grid_pose_, result.pose, config_);
+  const double moved = regrid_correction(grid_pose_, result.pose, config_);
   if (moved <= 1.0) return false;
   // From the second re-grid on, a correction that did not shrink ends the loop at the previous
   // pass's result, whose pose this pass's grid was cut at (so the scan's distributions and grid

@@ -61,6 +61,10 @@ void validate(const TrackerConfig& c) {
           "registration.isotropy_min_share", r.isotropy_min_share, "in [0, 1]; 0 always gates");
   require(r.line_gate >= 0.0 && r.line_gate < 1.0, "registration.line_gate", r.line_gate,
           "in [0, 1); 0 keeps every line-like correspondence");
+  require(r.normal_only_ratio >= 0.0, "registration.normal_only_ratio", r.normal_only_ratio,
+          "at least 0; 0 keeps the whole precision");
+  require(r.normal_only_iterations >= 1, "registration.normal_only_iterations",
+          r.normal_only_iterations, "at least 1");
   require(r.lambda >= 0.0, "registration.lambda", r.lambda, "at least 0");
   require(r.max_correspondence_distance >= 0.0, "registration.max_correspondence_distance",
           r.max_correspondence_distance, "at least 0; 0 means one voxel");

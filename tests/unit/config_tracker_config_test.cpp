@@ -46,6 +46,8 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   config.map.radius = 80.0;
   config.registration.max_isotropy = 0.125;
   config.registration.line_gate = 0.0625;
+  config.registration.normal_only_ratio = 0.75;
+  config.registration.normal_only_iterations = 3;
   config.recovery.reset_ratio = 0.375;
   config.recovery.min_gain = 1.25;
   config.recovery.first_speeds = {-2.5, 7.5};
@@ -66,6 +68,8 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   EXPECT_EQ(back.voxelizer.voxel_size, 2.5);
   EXPECT_EQ(back.registration.correspondence, CorrespondenceMethod::kVoxel27);
   EXPECT_EQ(back.registration.line_gate, 0.0625);
+  EXPECT_EQ(back.registration.normal_only_ratio, 0.75);
+  EXPECT_EQ(back.registration.normal_only_iterations, 3);
   EXPECT_EQ(back.recovery.reset_ratio, 0.375);
   EXPECT_EQ(back.recovery.min_gain, 1.25);
   EXPECT_EQ(back.recovery.first_speeds, (std::vector<double>{-2.5, 7.5}));
@@ -106,6 +110,12 @@ TEST(TrackerConfigYaml, ErrorsNameKeyAndValue) {
   EXPECT_NE(error_of("registration: {line_gate: -0.1}").find("registration.line_gate: -0.1"),
             std::string::npos);
   EXPECT_NE(error_of("registration: {line_gate: 1}").find("registration.line_gate: 1"),
+            std::string::npos);
+  EXPECT_NE(error_of("registration: {normal_only_ratio: -0.5}")
+                .find("registration.normal_only_ratio: -0.5"),
+            std::string::npos);
+  EXPECT_NE(error_of("registration: {normal_only_iterations: 0}")
+                .find("registration.normal_only_iterations: 0"),
             std::string::npos);
   EXPECT_NE(error_of("recovery: {first_speeds: [10, 150]}").find("recovery.first_speeds: 150"),
             std::string::npos);

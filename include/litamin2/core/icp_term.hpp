@@ -81,6 +81,27 @@ inline bool combined_is_line(const Eigen::Matrix3d& cq, const Eigen::Matrix3d& r
   return combined_spread(cq, rotated_cp, lambda) < line_gate;
 }
 
+/// Keeps only the normal of a plane-like combined precision C_qp (Eq. 3), for
+/// RegistrationConfig::normal_only_ratio: where its two weaker eigenvalues together are below
+/// `ratio` times the strongest, C_qp is replaced by s n n^T (n the strongest direction, s its
+/// eigenvalue) and true is returned; otherwise it is left as it is. n comes from three power
+/// iterations from the column with the largest diagonal (that column's weight on n is at least a
+/// third of the trace's), so its error is of order (second / strongest eigenvalue)^3; s is the
+/// Rayleigh quotient n^T C_qp n. A line (two strong directions) is left whole.
+inline bool keep_normal_only(Eigen::Matrix3d& precision, double ratio) {
+  int column = 0;
+  precision.diagonal().maxCoeff(&column);
+  Eigen::Vector3d n = precision * precision.col(column);
+  n = precision * n;
+  const double length = n.norm();
+  if (!(length > 0.0)) return false;
+  n /= length;
+  const double strongest = n.dot(precision * n);
+  if (precision.trace() - strongest >= ratio * strongest) return false;
+  precision = strongest * n * n.transpose();
+  return true;
+}
+
 struct IcpTerm {
   /// E_icp.
   double energy = 0.0;
@@ -90,16 +111,24 @@ struct IcpTerm {
   Matrix6d hessian;
 };
 
+/// dE/dxi = 2 J^T C r of the term with precision C, for y = R p + t and r = q - y.
+inline Eigen::Matrix<double, 6, 1> icp_gradient(const Eigen::Vector3d& y, const Eigen::Vector3d& r,
+                                                const Eigen::Matrix3d& precision) {
+  const Eigen::Vector3d cr = precision * r;
+  // J = [ [y]x  -I ];  J^T v = ( [y]x^T v ; -v ) = ( -y x v ; -v ) = ( v x y ; -v ).
+  Eigen::Matrix<double, 6, 1> gradient;
+  gradient.head<3>() = 2.0 * cr.cross(y);
+  gradient.tail<3>() = -2.0 * cr;
+  return gradient;
+}
+
 /// Evaluates the term for a source mean already moved to the world, y = R p + t.
 inline IcpTerm evaluate_icp_term(const Eigen::Vector3d& q, const Eigen::Vector3d& y,
                                  const Eigen::Matrix3d& precision) {
   IcpTerm term;
   const Eigen::Vector3d r = q - y;
-  const Eigen::Vector3d cr = precision * r;
-  term.energy = r.dot(cr);
-  // J = [ [y]x  -I ];  J^T v = ( [y]x^T v ; -v ) = ( -y x v ; -v ) = ( v x y ; -v ).
-  term.gradient.head<3>() = 2.0 * cr.cross(y);
-  term.gradient.tail<3>() = -2.0 * cr;
+  term.energy = r.dot(precision * r);
+  term.gradient = icp_gradient(y, r, precision);
   Eigen::Matrix<double, 3, 6> jacobian;
   jacobian.leftCols<3>() << 0.0, -y.z(), y.y(), y.z(), 0.0, -y.x(), -y.y(), y.x(), 0.0;
   jacobian.rightCols<3>() = -Eigen::Matrix3d::Identity();

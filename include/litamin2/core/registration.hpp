@@ -75,7 +75,14 @@ CostEvaluation evaluate_cost(const std::vector<Distribution>& source, const Voxe
                              const std::vector<double>* times = nullptr,
                              TimeWeightedSums* timed = nullptr);
 
-/// Registers `source` to `map` starting from `initial`.
+/// How far `b` is from `a` in units of the re-grid tolerances (RegistrationConfig::
+/// regrid_translation, regrid_rotation_deg): above 1 the scan is voxelised again at `b`.
+double regrid_correction(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
+                         const RegistrationConfig& config);
+
+/// Registers `source` to `map` starting from `initial`. With normal_only_ratio > 0, once
+/// converged within the re-grid tolerances of `initial` (no re-grid follows), it takes
+/// normal_only_iterations more steps with a plane's normal alone in the ICP gradient.
 RegistrationResult register_distributions(const std::vector<Distribution>& source,
                                           const VoxelMap& map, const CorrespondenceSearch& search,
                                           const Eigen::Isometry3d& initial,

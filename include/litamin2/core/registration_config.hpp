@@ -75,6 +75,23 @@ struct RegistrationConfig {
   /// scan is registered with all (as for the isotropy gate). The vlp16 preset sets 0.1
   /// (docs/accuracy.md, "Line-like correspondences").
   double line_gate = 0.0;
+  /// Where a correspondence's combined precision C_qp (Eq. 3) is a plane's, its two weaker
+  /// eigenvalues together below this times the strongest, the ICP term's gradient keeps only
+  /// the strongest direction, the normal: the offset along the plane is left out (0: off, as in
+  /// the paper). Within a plane, where a voxel's mean lies is set by where the scan's rings cut
+  /// the voxel, and they cut it differently from each viewpoint (a wall's points stop at the top
+  /// ring, higher on a far wall than on a near one). Eq. 3's normalised precision still weights
+  /// that offset, by the in-plane over the normal variance, and it tilts every registration the
+  /// same way: on the simulated HDL-64 sequences half of a -0.0007 deg pitch bias a frame, most
+  /// of the KITTI rotation drift. Applied only as a refinement (normal_only_iterations), with
+  /// the energy, its robust weight and the Hessian of the whole precision
+  /// (docs/accuracy.md, "In-plane offsets").
+  double normal_only_ratio = 1.0;
+  /// Weighted Newton steps with the normal-only gradient (normal_only_ratio), taken once the
+  /// registration has converged with the whole precision within the re-grid tolerances of its
+  /// start. Each costs one iteration; 2 measured most of the gain at about 1.5 more iterations
+  /// a frame (docs/accuracy.md, "In-plane offsets").
+  int normal_only_iterations = 2;
   /// Newton's step on the robust ICP cost includes the derivative of the robust weight (Eq. 5),
   /// not only the weight: the cost that w(E) = sigma^2 / (E + sigma^2) is the derivative of,
   /// rho(E) = sigma^2 ln(1 + E / sigma^2), has the Hessian w H + w'(E) g g^T per correspondence
