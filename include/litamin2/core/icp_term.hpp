@@ -85,9 +85,10 @@ inline bool combined_is_line(const Eigen::Matrix3d& cq, const Eigen::Matrix3d& r
 /// RegistrationConfig::normal_only_ratio: where its two weaker eigenvalues together are below
 /// `ratio` times the strongest, C_qp is replaced by s n n^T (n the strongest direction, s its
 /// eigenvalue) and true is returned; otherwise it is left as it is. n comes from three power
-/// iterations from the column with the largest diagonal (that column's weight on n is at least a
-/// third of the trace's), so its error is of order (second / strongest eigenvalue)^3; s is the
-/// Rayleigh quotient n^T C_qp n. A line (two strong directions) is left whole.
+/// iterations from the column with the largest diagonal (for a plane-like C_qp the normal's
+/// component along that axis is about 1/sqrt(3) or more), so its error is of order
+/// (second / strongest eigenvalue)^3; s is the Rayleigh quotient n^T C_qp n. A line (two
+/// strong directions) is left whole.
 inline bool keep_normal_only(Eigen::Matrix3d& precision, double ratio) {
   int column = 0;
   precision.diagonal().maxCoeff(&column);

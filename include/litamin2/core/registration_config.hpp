@@ -89,8 +89,9 @@ struct RegistrationConfig {
   double normal_only_ratio = 1.0;
   /// Weighted Newton steps with the normal-only gradient (normal_only_ratio), taken once the
   /// registration has converged with the whole precision within the re-grid tolerances of its
-  /// start. Each costs one iteration; 2 measured most of the gain at about 1.5 more iterations
-  /// a frame (docs/accuracy.md, "In-plane offsets").
+  /// start. Each costs one iteration: 2 measured about 2 more Newton iterations a frame and most
+  /// of the gain of iterating to convergence, which took 6 more (docs/accuracy.md, "In-plane
+  /// offsets").
   int normal_only_iterations = 2;
   /// Newton's step on the robust ICP cost includes the derivative of the robust weight (Eq. 5),
   /// not only the weight: the cost that w(E) = sigma^2 / (E + sigma^2) is the derivative of,
