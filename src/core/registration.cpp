@@ -139,6 +139,11 @@ Vector6d robust_newton_step(const Matrix6d& hessian, const Matrix6d& robust_uppe
 
 }  // namespace
 
+bool step_below(const Vector6d& xi, double factor, const RegistrationConfig& config) {
+  return xi.head<3>().norm() < factor * config.rotation_tolerance &&
+         xi.tail<3>().norm() < factor * config.translation_tolerance;
+}
+
 double regrid_correction(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
                          const RegistrationConfig& config) {
   const Eigen::Isometry3d delta = a.inverse() * b;
@@ -206,8 +211,9 @@ RegistrationResult register_distributions(const std::vector<Distribution>& sourc
   // correspondence instead, as in the paper.
   RegistrationConfig active = config;
   // The plane's normal alone in the gradient (RegistrationConfig::normal_only_ratio) only once
-  // converged with the whole precision within the re-grid tolerances of `initial` (the re-grid
-  // loop's last pass), for normal_only_iterations weighted Newton steps: far from the optimum
+  // the whole precision's step is below normal_only_start_factor times the tolerances, within
+  // the re-grid tolerances of `initial` (the re-grid loop's last pass), for
+  // normal_only_iterations weighted Newton steps: far from the optimum
   // the residuals along the planes are what turn the scan towards the map (with the normals
   // alone a scan started 10 deg off stayed 8 deg off). The Hessian keeps the whole precision:
   // along a street the walls' normals hold nothing forward, and a step from their gradient
@@ -256,18 +262,19 @@ RegistrationResult register_distributions(const std::vector<Distribution>& sourc
     }
     result.pose = apply_left_update(xi, result.pose);
     result.valid = true;
-    if (active.normal_only_ratio > 0.0 && ++normal_only_steps >= config.normal_only_iterations) {
+    const bool refining = active.normal_only_ratio > 0.0;
+    if (refining && ++normal_only_steps >= config.normal_only_iterations) {
       result.converged = true;
       break;
     }
-    if (xi.head<3>().norm() < config.rotation_tolerance &&
-        xi.tail<3>().norm() < config.translation_tolerance) {
-      if (active.normal_only_ratio != config.normal_only_ratio &&
-          regrid_correction(initial, result.pose, config) <= 1.0) {
-        active.normal_only_ratio = config.normal_only_ratio;
-        active.robust_newton = false;
-        continue;
-      }
+    if (!refining && config.normal_only_ratio > 0.0 &&
+        step_below(xi, config.normal_only_start_factor, config) &&
+        regrid_correction(initial, result.pose, config) <= 1.0) {
+      active.normal_only_ratio = config.normal_only_ratio;
+      active.robust_newton = false;
+      continue;
+    }
+    if (step_below(xi, 1.0, config)) {
       result.converged = true;
       break;
     }

@@ -115,8 +115,9 @@ SweepMotionResult register_with_sweep_motion(
   RegistrationConfig active = registration;
   // This solver takes the weighted step (RegistrationConfig::robust_newton's curvature unused).
   active.robust_newton = false;
-  // As register_distributions: the plane's normal alone in the gradient only once converged
-  // without it near `initial`, for normal_only_iterations steps.
+  // As register_distributions: the plane's normal alone in the gradient only once the step
+  // without it is below normal_only_start_factor times the tolerances near `initial`, for
+  // normal_only_iterations steps.
   active.normal_only_ratio = 0.0;
   int normal_only_steps = 0;
   std::vector<Distribution> moved;
@@ -179,19 +180,22 @@ SweepMotionResult register_with_sweep_motion(
     result.correction.angular += step.segment<3>(6);
     result.correction.linear += step.tail<3>();
     result.valid = true;
-    if (active.normal_only_ratio > 0.0 &&
-        ++normal_only_steps >= registration.normal_only_iterations)
-      break;
+    const bool refining = active.normal_only_ratio > 0.0;
+    if (refining && ++normal_only_steps >= registration.normal_only_iterations) break;
     // The correction's step counted by what it moves a point over the sweep (span).
-    if (step.head<3>().norm() < registration.rotation_tolerance &&
-        step.segment<3>(3).norm() < registration.translation_tolerance &&
-        span * step.segment<3>(6).norm() < registration.rotation_tolerance &&
-        span * step.tail<3>().norm() < registration.translation_tolerance) {
-      if (active.normal_only_ratio == registration.normal_only_ratio ||
-          regrid_correction(initial, result.pose, registration) > 1.0)
-        break;
+    Vector6d correction_step;
+    correction_step << span * step.segment<3>(6), span * step.tail<3>();
+    const auto below = [&](double factor) {
+      return step_below(step.head<6>(), factor, registration) &&
+             step_below(correction_step, factor, registration);
+    };
+    if (!refining && registration.normal_only_ratio > 0.0 &&
+        below(registration.normal_only_start_factor) &&
+        regrid_correction(initial, result.pose, registration) <= 1.0) {
       active.normal_only_ratio = registration.normal_only_ratio;
+      continue;
     }
+    if (below(1.0)) break;
   }
   return result;
 }

@@ -65,6 +65,8 @@ void validate(const TrackerConfig& c) {
           "at least 0; 0 keeps the whole precision");
   require(r.normal_only_iterations >= 1, "registration.normal_only_iterations",
           r.normal_only_iterations, "at least 1");
+  require(r.normal_only_start_factor >= 1.0, "registration.normal_only_start_factor",
+          r.normal_only_start_factor, "at least 1; 1 starts the refinement once converged");
   require(r.lambda >= 0.0, "registration.lambda", r.lambda, "at least 0");
   require(r.max_correspondence_distance >= 0.0, "registration.max_correspondence_distance",
           r.max_correspondence_distance, "at least 0; 0 means one voxel");

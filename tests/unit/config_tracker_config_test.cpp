@@ -48,6 +48,7 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   config.registration.line_gate = 0.0625;
   config.registration.normal_only_ratio = 0.75;
   config.registration.normal_only_iterations = 3;
+  config.registration.normal_only_start_factor = 7.5;
   config.recovery.reset_ratio = 0.375;
   config.recovery.min_gain = 1.25;
   config.recovery.first_speeds = {-2.5, 7.5};
@@ -70,6 +71,7 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   EXPECT_EQ(back.registration.line_gate, 0.0625);
   EXPECT_EQ(back.registration.normal_only_ratio, 0.75);
   EXPECT_EQ(back.registration.normal_only_iterations, 3);
+  EXPECT_EQ(back.registration.normal_only_start_factor, 7.5);
   EXPECT_EQ(back.recovery.reset_ratio, 0.375);
   EXPECT_EQ(back.recovery.min_gain, 1.25);
   EXPECT_EQ(back.recovery.first_speeds, (std::vector<double>{-2.5, 7.5}));
@@ -116,6 +118,9 @@ TEST(TrackerConfigYaml, ErrorsNameKeyAndValue) {
             std::string::npos);
   EXPECT_NE(error_of("registration: {normal_only_iterations: 0}")
                 .find("registration.normal_only_iterations: 0"),
+            std::string::npos);
+  EXPECT_NE(error_of("registration: {normal_only_start_factor: 0.5}")
+                .find("registration.normal_only_start_factor: 0.5"),
             std::string::npos);
   EXPECT_NE(error_of("recovery: {first_speeds: [10, 150]}").find("recovery.first_speeds: 150"),
             std::string::npos);

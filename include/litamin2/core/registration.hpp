@@ -80,9 +80,14 @@ CostEvaluation evaluate_cost(const std::vector<Distribution>& source, const Voxe
 double regrid_correction(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
                          const RegistrationConfig& config);
 
-/// Registers `source` to `map` starting from `initial`. With normal_only_ratio > 0, once
-/// converged within the re-grid tolerances of `initial` (no re-grid follows), it takes
-/// normal_only_iterations more steps with a plane's normal alone in the ICP gradient.
+/// Whether a Newton step (rotation, translation) is below `factor` times the convergence
+/// tolerances (RegistrationConfig::rotation_tolerance, translation_tolerance).
+bool step_below(const Vector6d& xi, double factor, const RegistrationConfig& config);
+
+/// Registers `source` to `map` starting from `initial`. With normal_only_ratio > 0, once the
+/// step is below normal_only_start_factor times the tolerances within the re-grid tolerances
+/// of `initial` (no re-grid follows), it takes normal_only_iterations more steps with a
+/// plane's normal alone in the ICP gradient, and stops.
 RegistrationResult register_distributions(const std::vector<Distribution>& source,
                                           const VoxelMap& map, const CorrespondenceSearch& search,
                                           const Eigen::Isometry3d& initial,
