@@ -25,6 +25,7 @@
 #include "litamin2/io/pcd.hpp"
 #include "litamin2/io/trajectory.hpp"
 #include "litamin2/sim/builtin_trajectory.hpp"
+#include "litamin2/sim/drivable_height.hpp"
 #include "litamin2/sim/fleet.hpp"
 #include "litamin2/sim/frame_selection.hpp"
 #include "litamin2/sim/ground_clearance.hpp"
@@ -171,6 +172,7 @@ int main(int argc, char** argv) {
   std::string trajectory_path, builtin, calib_path, sequence_name, frames_spec,
       sensor = "hdl64", output, compare_real;
   std::uint64_t seed = 1;
+  double max_grade = 0.15;
   int fleet = 0, threads = 0;
   double noise = -1.0, dropout = -1.0, lane_offset = 3.0, density = 1.0;
   auto* traj_opt = app.add_option("--trajectory", trajectory_path,
@@ -237,6 +239,12 @@ int main(int argc, char** argv) {
          "Ego vehicle parts that return points: none | roof-rack (the real drive's: 1-1.8 m "
          "behind the sensor)")
       ->check(CLI::IsMember(sim::EgoBody::preset_names()));
+  app.add_option("--max-grade", max_grade,
+                 "Where the ground check finds the sensor off its mount height (a trajectory that "
+                 "climbs where it hardly moves, e.g. KITTI 08's start), the trajectory's heights "
+                 "are limited to this grade (rise over run, plus 1 cm a frame) and the world is "
+                 "laid again (default 0.15; 0: keep the heights and only warn)")
+      ->check(CLI::Range(0.0, 10.0));
   app.add_option("--mount-tilt", mount_tilt,
                  "Sensor mount rotation ROLL,PITCH in degrees (e.g. 1,0; a negative roll as "
                  "--mount-tilt=-1,0.5)");
@@ -333,7 +341,7 @@ int main(int argc, char** argv) {
     sim::FleetOptions fleet_opt;
     fleet_opt.vehicles = std::max(1, fleet);
     fleet_opt.lane_offset = lane_offset;
-    const auto vehicles = sim::plan_fleet(velo, first, last - first, fleet_opt);
+    auto vehicles = sim::plan_fleet(velo, first, last - first, fleet_opt);
 
     // Sensor, rig, world, traffic and frame drops: the realism preset, then single overrides.
     sim::RealismSettings real;
@@ -400,38 +408,65 @@ int main(int argc, char** argv) {
         real.drops.probability, real.drops.max_gap, real.drops.burst_probability,
         real.drops.burst_min, real.drops.burst_max);
 
-    const auto t_world = std::chrono::steady_clock::now();
-    // The world covers the base trajectory around all vehicles' windows (plus 150 m), then the
-    // vehicles' own paths (reverse lanes).
-    std::size_t lo = first, hi = last;
-    for (const auto& v : vehicles) {
-      for (std::size_t f : v.source_frames) {
-        lo = std::min(lo, f);
-        hi = std::max(hi, f + 1);
-      }
-    }
-    std::vector<std::vector<Eigen::Isometry3d>> paths{sim::trajectory_window(velo, lo, hi, 150.0)};
-    for (const auto& v : vehicles) paths.push_back(v.sensor_poses);
     sim::WorldOptions wopt = real.world;
     wopt.sensor_height = model.mount_height;
-    const sim::World world(paths, seed, wopt);
-    spdlog::info("world: {} objects in {} tiles, built in {:.2f} s", world.objects().size(),
-                 world.tile_count(),
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t_world).count());
-
-    for (std::size_t k = 0; k < vehicles.size(); ++k) {
-      const auto& v = vehicles[k];
-      const sim::GroundClearance c =
-          sim::check_ground_clearance(world, v.sensor_poses, model.mount_height, 0.5);
-      if (c.poses_off == 0) continue;
+    // The world covers the base trajectory around all vehicles' windows (plus 150 m), then the
+    // vehicles' own paths (reverse lanes).
+    const auto lay_world = [&]() {
+      const auto t_world = std::chrono::steady_clock::now();
+      std::size_t lo = first, hi = last;
+      for (const auto& v : vehicles) {
+        for (std::size_t f : v.source_frames) {
+          lo = std::min(lo, f);
+          hi = std::max(hi, f + 1);
+        }
+      }
+      std::vector<std::vector<Eigen::Isometry3d>> paths{
+          sim::trajectory_window(velo, lo, hi, 150.0)};
+      for (const auto& v : vehicles) paths.push_back(v.sensor_poses);
+      auto laid = std::make_unique<const sim::World>(paths, seed, wopt);
+      spdlog::info(
+          "world: {} objects in {} tiles, built in {:.2f} s", laid->objects().size(),
+          laid->tile_count(),
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t_world).count());
+      return laid;
+    };
+    // Whether every vehicle's sensor rides at its mount height over the ground laid under it.
+    const auto check_clearance = [&](const sim::World& laid, bool warn) {
+      bool all_clear = true;
+      for (std::size_t k = 0; k < vehicles.size(); ++k) {
+        const auto& v = vehicles[k];
+        const sim::GroundClearance c =
+            sim::check_ground_clearance(laid, v.sensor_poses, model.mount_height, 0.5);
+        if (c.poses_off == 0) continue;
+        all_clear = false;
+        if (!warn) continue;
+        spdlog::warn(
+            "{}the sensor is up to {:.1f} m off its mount height above the simulated ground at "
+            "{} of {} frames (source frames {}-{}): the trajectory climbs or falls where it "
+            "hardly moves, and the road laid under it cuts through the scans there (a ground no "
+            "vehicle sees; e.g. KITTI 08's first 60 frames)",
+            fleet > 0 ? fmt::format("vehicle_{:02}: ", k) : std::string(), c.worst_m, c.poses_off,
+            v.sensor_poses.size(), v.source_frames[c.first_off], v.source_frames[c.last_off]);
+      }
+      return all_clear;
+    };
+    std::unique_ptr<const sim::World> laid_world = lay_world();
+    if (!check_clearance(*laid_world, max_grade <= 0.0)) {
+      // A ground truth no road can lie under: its heights limited to a drivable grade, the
+      // vehicles planned and the world laid again; poses.txt holds the repaired trajectory.
+      constexpr double kStepSlackM = 0.01;
+      const std::size_t changed = sim::limit_grade(velo, max_grade, kStepSlackM);
       spdlog::warn(
-          "{}the sensor is up to {:.1f} m off its mount height above the simulated ground at {} "
-          "of {} frames (source frames {}-{}): the trajectory climbs or falls where it hardly "
-          "moves, and the road laid under it cuts through the scans there (a ground no vehicle "
-          "sees; e.g. KITTI 08's first 60 frames)",
-          fleet > 0 ? fmt::format("vehicle_{:02}: ", k) : std::string(), c.worst_m, c.poses_off,
-          v.sensor_poses.size(), v.source_frames[c.first_off], v.source_frames[c.last_off]);
+          "the trajectory climbs or falls where it hardly moves (the sensor left its mount "
+          "height above the ground): {} of {} poses' heights limited to a {:.0f} % grade plus "
+          "{:.2f} m a frame (--max-grade); the ground truth written is the repaired trajectory",
+          changed, velo.size(), 100.0 * max_grade, kStepSlackM);
+      vehicles = sim::plan_fleet(velo, first, last - first, fleet_opt);
+      laid_world = lay_world();
+      check_clearance(*laid_world, true);
     }
+    const sim::World& world = *laid_world;
 
     if (fleet > 0) {
       // Where each vehicle starts in the shared world frame (velodyne convention, KITTI 3x4 row
