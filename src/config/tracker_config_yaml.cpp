@@ -146,6 +146,7 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node, const TrackerConf
   registration.read("normal_only_ratio", r.normal_only_ratio);
   registration.read("normal_only_iterations", r.normal_only_iterations);
   registration.read("normal_only_start_factor", r.normal_only_start_factor);
+  registration.read("normal_only_thickness", r.normal_only_thickness);
   registration.read("lambda", r.lambda);
   registration.read_enum("cov_energy", r.cov_energy, kCovEnergies);
   registration.read_enum("cov_hessian", r.cov_hessian, kCovHessians);
@@ -273,6 +274,7 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "normal_only_ratio" << YAML::Value << r.normal_only_ratio;
   out << YAML::Key << "normal_only_iterations" << YAML::Value << r.normal_only_iterations;
   out << YAML::Key << "normal_only_start_factor" << YAML::Value << r.normal_only_start_factor;
+  out << YAML::Key << "normal_only_thickness" << YAML::Value << r.normal_only_thickness;
   out << YAML::Key << "lambda" << YAML::Value << r.lambda;
   out << YAML::Key << "cov_energy" << YAML::Value << enum_name(r.cov_energy, kCovEnergies);
   out << YAML::Key << "cov_hessian" << YAML::Value << enum_name(r.cov_hessian, kCovHessians);

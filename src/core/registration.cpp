@@ -42,11 +42,20 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
   const Eigen::Matrix3d precision = combined_precision(target.cov, rotated_cov, config.lambda);
   IcpTerm icp = evaluate_icp_term(target.mean, y, precision);
   // A plane's normal alone in the gradient (RegistrationConfig::normal_only_ratio, not in the
-  // paper); the energy, its weight and the Hessian keep the whole precision.
+  // paper); the energy, its weight and the Hessian keep the whole precision. The plane's
+  // gradient and Hessian are weighted by its thickness (normal_only_thickness): Eq. 3's
+  // normalised precision weighs a rough plane's normal as much as a crisp one's.
   if (config.normal_only_ratio > 0.0) {
-    Eigen::Matrix3d normal = precision;
-    if (keep_normal_only(normal, config.normal_only_ratio)) {
-      icp.gradient = icp_gradient(y, target.mean - y, normal);
+    Eigen::Matrix3d normal_precision = precision;
+    Eigen::Vector3d normal;
+    if (keep_normal_only(normal_precision, config.normal_only_ratio, &normal)) {
+      icp.gradient = icp_gradient(y, target.mean - y, normal_precision);
+      if (config.normal_only_thickness > 0.0) {
+        const double thickness_sq = normal.dot((target.cov + rotated_cov) * normal);
+        const double weight = plane_thickness_weight(thickness_sq, config.normal_only_thickness);
+        icp.gradient *= weight;
+        icp.hessian *= weight;
+      }
     }
   }
   const double w_icp = robust_weight(icp.energy, config.sigma_icp);

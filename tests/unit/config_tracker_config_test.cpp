@@ -49,6 +49,7 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   config.registration.normal_only_ratio = 0.75;
   config.registration.normal_only_iterations = 3;
   config.registration.normal_only_start_factor = 7.5;
+  config.registration.normal_only_thickness = 0.0625;
   config.recovery.reset_ratio = 0.375;
   config.recovery.min_gain = 1.25;
   config.recovery.first_speeds = {-2.5, 7.5};
@@ -72,6 +73,7 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   EXPECT_EQ(back.registration.normal_only_ratio, 0.75);
   EXPECT_EQ(back.registration.normal_only_iterations, 3);
   EXPECT_EQ(back.registration.normal_only_start_factor, 7.5);
+  EXPECT_EQ(back.registration.normal_only_thickness, 0.0625);
   EXPECT_EQ(back.recovery.reset_ratio, 0.375);
   EXPECT_EQ(back.recovery.min_gain, 1.25);
   EXPECT_EQ(back.recovery.first_speeds, (std::vector<double>{-2.5, 7.5}));
@@ -118,6 +120,9 @@ TEST(TrackerConfigYaml, ErrorsNameKeyAndValue) {
             std::string::npos);
   EXPECT_NE(error_of("registration: {normal_only_iterations: 0}")
                 .find("registration.normal_only_iterations: 0"),
+            std::string::npos);
+  EXPECT_NE(error_of("registration: {normal_only_thickness: -0.1}")
+                .find("registration.normal_only_thickness: -0.1"),
             std::string::npos);
   EXPECT_NE(error_of("registration: {normal_only_start_factor: 0.5}")
                 .find("registration.normal_only_start_factor: 0.5"),

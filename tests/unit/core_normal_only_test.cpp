@@ -66,6 +66,14 @@ TEST(NormalOnly, TheRatioDecidesWhatIsAPlane) {
   EXPECT_GT(std::abs(kept.eigenvectors().col(2).dot(r.col(0))), 0.99);
 }
 
+TEST(NormalOnly, APlanesThicknessWeightIsHalfAtTau) {
+  EXPECT_EQ(plane_thickness_weight(0.0, 0.1), 1.0);
+  EXPECT_DOUBLE_EQ(plane_thickness_weight(0.01, 0.1), 0.5);  // t = tau
+  EXPECT_DOUBLE_EQ(plane_thickness_weight(0.04, 0.1), 0.2);  // t = 2 tau
+  EXPECT_LT(plane_thickness_weight(0.09, 0.1), plane_thickness_weight(0.04, 0.1));
+  EXPECT_EQ(plane_thickness_weight(0.5, 0.0), 1.0);  // off
+}
+
 /// A street between walls, each plane in the middle of its voxels and no two in one voxel:
 /// ground (z = -1.5) over |x| < 12, |y| < 6; walls along x at y = +-7.5 (|x| < 12) and across it
 /// at x = +-13.5 (|y| < 6), from z = -1.5 to 4.5, with 0.1 m of relief (vertical ribs, the same

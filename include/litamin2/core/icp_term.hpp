@@ -88,8 +88,9 @@ inline bool combined_is_line(const Eigen::Matrix3d& cq, const Eigen::Matrix3d& r
 /// iterations from the column with the largest diagonal (for a plane-like C_qp the normal's
 /// component along that axis is about 1/sqrt(3) or more), so its error is of order
 /// (second / strongest eigenvalue)^3; s is the Rayleigh quotient n^T C_qp n. A line (two
-/// strong directions) is left whole.
-inline bool keep_normal_only(Eigen::Matrix3d& precision, double ratio) {
+/// strong directions) is left whole. With `normal`, n is written there when true is returned.
+inline bool keep_normal_only(Eigen::Matrix3d& precision, double ratio,
+                             Eigen::Vector3d* normal = nullptr) {
   int column = 0;
   precision.diagonal().maxCoeff(&column);
   Eigen::Vector3d n = precision * precision.col(column);
@@ -100,7 +101,16 @@ inline bool keep_normal_only(Eigen::Matrix3d& precision, double ratio) {
   const double strongest = n.dot(precision * n);
   if (precision.trace() - strongest >= ratio * strongest) return false;
   precision = strongest * n * n.transpose();
+  if (normal) *normal = n;
   return true;
+}
+
+/// The weight tau^2 / (tau^2 + t^2) of a plane of thickness t (standard deviation along its
+/// normal) in the normal-only refinement (RegistrationConfig::normal_only_thickness): about 1
+/// for a plane much thinner than tau, 1/2 at tau, falling as 1/t^2 beyond. tau 0: always 1.
+inline double plane_thickness_weight(double thickness_sq, double tau) {
+  if (!(tau > 0.0)) return 1.0;
+  return tau * tau / (tau * tau + thickness_sq);
 }
 
 struct IcpTerm {
