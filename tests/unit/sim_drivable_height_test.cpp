@@ -6,25 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include "support/climb_in_place.hpp"
+
 #include <cmath>
 
 namespace litamin2 {
 namespace {
-
-/// 60 m flat, then 8 m up while moving 8 m forward (a ground truth's height drift at a near
-/// standstill, as at KITTI 08's start), then flat again, with a slight yaw on every pose.
-std::vector<Eigen::Isometry3d> climb_in_place() {
-  std::vector<Eigen::Isometry3d> climb;
-  for (int i = 0; i < 160; ++i) {
-    Eigen::Isometry3d p = Eigen::Isometry3d::Identity();
-    const bool in_place = i >= 60 && i < 100;
-    const double x = i < 60 ? 1.0 * i : i < 100 ? 60.0 + 0.2 * (i - 60) : 68.0 + 1.0 * (i - 100);
-    p.translation() = Eigen::Vector3d(x, 0.0, in_place ? 0.2 * (i - 60) : (i < 60 ? 0.0 : 8.0));
-    p.rotate(Eigen::AngleAxisd(0.001 * i, Eigen::Vector3d::UnitZ()));
-    climb.push_back(p);
-  }
-  return climb;
-}
 
 TEST(SimDrivableHeight, ADrivablePathIsLeftAsItIs) {
   const auto loop = sim::builtin_trajectory("loop");
@@ -35,7 +22,7 @@ TEST(SimDrivableHeight, ADrivablePathIsLeftAsItIs) {
 }
 
 TEST(SimDrivableHeight, AClimbInPlaceIsLimitedAndTheRoadFitsUnderIt) {
-  const auto climb = climb_in_place();
+  const auto climb = testing::climb_in_place(0.001);  // a slight yaw on every pose
   auto repaired = climb;
   const std::size_t changed = sim::limit_grade(repaired, 0.15, 0.01);
   EXPECT_GT(changed, 40u);  // the climb and the flat stretch after it, until it is caught up

@@ -11,6 +11,7 @@
 #include "litamin2/sim/ground_clearance.hpp"
 #include "litamin2/sim/raycaster.hpp"
 #include "litamin2/sim/world.hpp"
+#include "support/climb_in_place.hpp"
 
 namespace sim = litamin2::sim;
 namespace io = litamin2::io;
@@ -90,14 +91,7 @@ TEST(SimWorld, GroundClearanceFlagsAClimbInPlace) {
   EXPECT_EQ(fine.poses_off, 0u);
   EXPECT_LT(fine.worst_m, 0.5);
 
-  std::vector<Eigen::Isometry3d> climb;
-  for (int i = 0; i < 160; ++i) {
-    Eigen::Isometry3d p = Eigen::Isometry3d::Identity();
-    const bool in_place = i >= 60 && i < 100;
-    const double x = i < 60 ? 1.0 * i : i < 100 ? 60.0 + 0.2 * (i - 60) : 68.0 + 1.0 * (i - 100);
-    p.translation() = Eigen::Vector3d(x, 0.0, in_place ? 0.2 * (i - 60) : (i < 60 ? 0.0 : 8.0));
-    climb.push_back(p);
-  }
+  const std::vector<Eigen::Isometry3d> climb = litamin2::testing::climb_in_place();
   const sim::World world(climb, 3);
   const sim::GroundClearance c =
       sim::check_ground_clearance(world, climb, world.options().sensor_height, 0.5);
