@@ -42,9 +42,10 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
   const Eigen::Matrix3d precision = combined_precision(target.cov, rotated_cov, config.lambda);
   IcpTerm icp = evaluate_icp_term(target.mean, y, precision);
   // A plane's normal alone in the gradient (RegistrationConfig::normal_only_ratio, not in the
-  // paper); the energy, its weight and the Hessian keep the whole precision. The plane's
-  // gradient and Hessian are weighted by its thickness (normal_only_thickness): Eq. 3's
-  // normalised precision weighs a rough plane's normal as much as a crisp one's.
+  // paper); the energy, its weight and the Hessian keep the whole precision. With
+  // normal_only_thickness set (off by default), the plane's gradient and Hessian are weighted
+  // by its thickness: Eq. 3's normalised precision weighs a rough plane's normal as much as a
+  // crisp one's.
   if (config.normal_only_ratio > 0.0) {
     Eigen::Matrix3d normal_precision = precision;
     Eigen::Vector3d normal;

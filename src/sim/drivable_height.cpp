@@ -1,6 +1,5 @@
 #include "litamin2/sim/drivable_height.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 namespace litamin2::sim {
