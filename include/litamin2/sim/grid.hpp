@@ -9,9 +9,11 @@
 
 namespace litamin2::sim {
 
-/// Hash key of the grid cell (x, y).
+/// Hash key of the grid cell (x, y): x's 32 bits above y's. Shifted as unsigned (a negative
+/// signed value shifted left is undefined behaviour in C++17); the keys are the same bits.
 inline std::int64_t cell_key(int x, int y) {
-  return (static_cast<std::int64_t>(x) << 32) ^ static_cast<std::uint32_t>(y);
+  const std::uint64_t high = static_cast<std::uint32_t>(x);
+  return static_cast<std::int64_t>((high << 32) ^ static_cast<std::uint32_t>(y));
 }
 
 /// Calls visit(x, y) for every cell of a grid of spacing `cell` (cell (x, y) covers
