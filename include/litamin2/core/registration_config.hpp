@@ -89,9 +89,11 @@ struct RegistrationConfig {
   double normal_only_ratio = 1.0;
   /// Weighted Newton steps with the normal-only gradient (normal_only_ratio), taken once the
   /// registration has nearly converged with the whole precision (normal_only_start_factor)
-  /// within the re-grid tolerances of its start. Each costs one iteration: 2 measured about 2 more
-  /// Newton iterations a frame and most of the gain of iterating to convergence, which took 6 more
-  /// (docs/accuracy.md, "In-plane offsets").
+  /// within the re-grid tolerances of its start. Each costs one iteration. Started after full
+  /// convergence (normal_only_start_factor 1), 2 measured about 2 more Newton iterations a frame
+  /// and most of the gain of iterating to convergence, which took 6 more (docs/accuracy.md,
+  /// "In-plane offsets"); started at 10x the tolerances, 0.9 (builtin VLP-16 loop) to 1.6
+  /// (HDL-64 loop) more than without the refinement.
   int normal_only_iterations = 2;
   /// The refinement (normal_only_iterations) starts once a Newton step with the whole precision
   /// is below this many times rotation_tolerance and translation_tolerance (1: converged).
