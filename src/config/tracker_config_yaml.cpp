@@ -217,6 +217,7 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node, const TrackerConf
   sweep.read("linear_sigma", d.sweep_motion.linear_sigma);
   sweep.read("max_time_spread_s", d.sweep_motion.max_time_spread_s);
   sweep.read("max_iterations", d.sweep_motion.max_iterations);
+  sweep.read("min_speed_mps", d.sweep_motion.min_speed_mps);
   sweep.reject_unknown();
   deskew.reject_unknown();
 
@@ -343,6 +344,7 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "linear_sigma" << YAML::Value << d.sweep_motion.linear_sigma;
   out << YAML::Key << "max_time_spread_s" << YAML::Value << d.sweep_motion.max_time_spread_s;
   out << YAML::Key << "max_iterations" << YAML::Value << d.sweep_motion.max_iterations;
+  out << YAML::Key << "min_speed_mps" << YAML::Value << d.sweep_motion.min_speed_mps;
   out << YAML::EndMap << YAML::EndMap << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }

@@ -52,6 +52,8 @@ void validate(const SweepMotionConfig& c) {
           c.max_time_spread_s, "seconds, > 0");
   require(c.max_iterations >= 1 && c.max_iterations <= 100, "max_iterations", c.max_iterations,
           "within [1, 100]");
+  require(std::isfinite(c.min_speed_mps) && c.min_speed_mps >= 0.0, "min_speed_mps",
+          c.min_speed_mps, "m/s, >= 0 (0: at any speed)");
 }
 
 DistributionTimes distribution_times(const PointCloud& scan, const std::vector<float>& times,

@@ -99,9 +99,11 @@ FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) 
       }
     }
     // Only where the scan fits the map as frames usually do: after a break, or on a scan that
-    // fits badly, the correction would fit the twist to the misfit.
+    // fits badly, the correction would fit the twist to the misfit. And only at speed
+    // (SweepMotionConfig::min_speed_mps).
     if (d.sweep_motion.enabled && registered_pose && frames_ >= 2 && fitting_share_ > 0.0 &&
-        registered_share >= config_.recovery.trigger_ratio * fitting_share_)
+        registered_share >= config_.recovery.trigger_ratio * fitting_share_ &&
+        twist.linear.norm() >= d.sweep_motion.min_speed_mps)
       correct_sweep_motion(*measured, *times, *registered_pose, twist, first_pass);
     input = &deskewed_;
   }

@@ -231,11 +231,12 @@ struct Errors {
 
 Errors track(const std::vector<PointCloud>& scans, bool deskew, int passes,
              TimeSource source = TimeSource::kField, bool sweep_motion = false,
-             double roll_rate = 0.0) {
+             double roll_rate = 0.0, double sweep_motion_min_speed = 0.0) {
   TrackerConfig config;
   config.deskew.enabled = deskew;
   config.deskew.passes = passes;
   config.deskew.sweep_motion.enabled = sweep_motion;
+  config.deskew.sweep_motion.min_speed_mps = sweep_motion_min_speed;
   config.deskew.time_source = source;
   Tracker tracker(config);
   Errors e;
@@ -308,6 +309,25 @@ TEST(DeskewTrackerWobble, TheMotionWithinTheSweepIsEstimatedWithThePose) {
   EXPECT_LT(estimated.max_m, 0.15);
   EXPECT_LT(estimated.max_deg, 0.6 * two.max_deg);
   EXPECT_LT(estimated.mean_m, 0.75 * two.mean_m);
+}
+
+TEST(DeskewTrackerWobble, TheSweepsMotionIsEstimatedOnlyAtTheMinimumSpeed) {
+  // The drive runs at 25 m/s: a minimum of 20 m/s estimates as without one, 30 m/s never does.
+  constexpr double kRollRate = 0.3;
+  std::vector<PointCloud> scans;
+  for (int k = 0; k < 8; ++k) scans.push_back(moving_scan(k, true, kRollRate));
+  const Errors off = track(scans, true, 2, TimeSource::kField, false, kRollRate);
+  const Errors any_speed = track(scans, true, 2, TimeSource::kField, true, kRollRate, 0.0);
+  const Errors below = track(scans, true, 2, TimeSource::kField, true, kRollRate, 20.0);
+  const Errors above = track(scans, true, 2, TimeSource::kField, true, kRollRate, 30.0);
+  bool estimated_differs = false;
+  for (std::size_t k = 0; k < scans.size(); ++k) {
+    EXPECT_TRUE(below.poses[k].matrix() == any_speed.poses[k].matrix()) << k;
+    EXPECT_TRUE(above.poses[k].matrix() == off.poses[k].matrix()) << k;
+    estimated_differs =
+        estimated_differs || !(any_speed.poses[k].matrix() == off.poses[k].matrix());
+  }
+  EXPECT_TRUE(estimated_differs);
 }
 
 TEST_F(DeskewTracker, SelfHitsAreDroppedInTheFrameOfTheirFiring) {

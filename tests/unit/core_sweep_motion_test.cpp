@@ -192,6 +192,11 @@ TEST(SweepMotion, ConfigIsValidated) {
   c = SweepMotionConfig{};
   c.max_iterations = 0;
   rejected(c, "max_iterations");
+  c = SweepMotionConfig{};
+  c.min_speed_mps = -1.0;
+  rejected(c, "min_speed_mps");
+  c.min_speed_mps = std::nan("");
+  rejected(c, "min_speed_mps");
 }
 
 }  // namespace

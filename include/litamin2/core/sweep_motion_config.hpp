@@ -19,10 +19,15 @@ struct SweepMotionConfig {
   double max_time_spread_s = 0.01;
   /// Newton iterations at most.
   int max_iterations = 10;
+  /// Estimated only while the twist deskew used moves the sensor at least this fast, m/s
+  /// (0: at any speed). The change of the twist within a sweep displaces its points by about
+  /// the change times the sweep's period, so slow sweeps gain little from it for its cost.
+  double min_speed_mps = 0.0;
 };
 
 /// Throws ConfigError (naming the key under "deskew.sweep_motion.") on the first invalid
-/// value: sigmas finite and > 0, iterations within [1, 100].
+/// value: sigmas finite and > 0, iterations within [1, 100], min_speed_mps finite and
+/// >= 0.
 void validate(const SweepMotionConfig& config);
 
 }  // namespace litamin2
