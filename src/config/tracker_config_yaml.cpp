@@ -142,6 +142,7 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node, const TrackerConf
   read_managed(registration, "cov_min_points", r.cov_min_points);
   read_managed(registration, "max_isotropy", r.max_isotropy);
   read_managed(registration, "isotropy_min_share", r.isotropy_min_share);
+  registration.read("isotropy_min_information", r.isotropy_min_information);
   read_managed(registration, "line_gate", r.line_gate);
   registration.read("normal_only_ratio", r.normal_only_ratio);
   registration.read("normal_only_iterations", r.normal_only_iterations);
@@ -271,6 +272,7 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "cov_min_points" << YAML::Value << r.cov_min_points;
   out << YAML::Key << "max_isotropy" << YAML::Value << r.max_isotropy;
   out << YAML::Key << "isotropy_min_share" << YAML::Value << r.isotropy_min_share;
+  out << YAML::Key << "isotropy_min_information" << YAML::Value << r.isotropy_min_information;
   out << YAML::Key << "line_gate" << YAML::Value << r.line_gate;
   out << YAML::Key << "normal_only_ratio" << YAML::Value << r.normal_only_ratio;
   out << YAML::Key << "normal_only_iterations" << YAML::Value << r.normal_only_iterations;

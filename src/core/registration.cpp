@@ -10,6 +10,7 @@
 #include <tbb/partitioner.h>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -19,7 +20,7 @@ namespace {
 /// Adds one correspondence's weighted terms (paper Eq. 6) to `out`.
 void accumulate_correspondence(const Distribution& source, const Distribution& target,
                                const Eigen::Isometry3d& pose, const RegistrationConfig& config,
-                               CostEvaluation& out, double time = 0.0,
+                               CostEvaluation& out, bool with_gated_round, double time = 0.0,
                                TimeWeightedSums* timed = nullptr) {
   const Eigen::Matrix3d& rotation = pose.linear();
   const Eigen::Vector3d y = pose * source.mean;
@@ -30,6 +31,12 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
   // mean depends on the viewpoint, which Eq. 3's normalised precision weights in every direction.
   if (config.max_isotropy < 1.0 &&
       combined_is_round(target.cov, rotated_cov, config.lambda, config.max_isotropy)) {
+    if (with_gated_round) {
+      // What the correspondence would add to the ICP term's Hessian (Eq. 3, weight Eq. 5).
+      const IcpTerm round = evaluate_icp_term(
+          target.mean, y, combined_precision(target.cov, rotated_cov, config.lambda));
+      out.gated_round_hessian += robust_weight(round.energy, config.sigma_icp) * round.hessian;
+    }
     return;
   }
   // Line-like combined distributions (not in the paper, RegistrationConfig::line_gate): two
@@ -112,9 +119,25 @@ void add_into(CostEvaluation& total, const CostEvaluation& part) {
   total.hessian += part.hessian;
   total.cov_curvature += part.cov_curvature;
   total.robust_curvature += part.robust_curvature;
+  total.gated_round_hessian += part.gated_round_hessian;
   total.correspondences += part.correspondences;
   total.matched += part.matched;
   total.inliers += part.inliers;
+}
+
+/// The smallest generalised eigenvalue of (part, whole): the least share of `whole`'s
+/// information that `part` holds in any direction of the pose (0 where `whole` is not
+/// positive definite).
+double smallest_information_share(const Matrix6d& part, const Matrix6d& whole) {
+  if (!part.allFinite() || !whole.allFinite()) return 0.0;
+  const Eigen::LLT<Matrix6d> llt(whole);
+  if (llt.info() != Eigen::Success) return 0.0;
+  // L^-1 part L^-T has the generalised eigenvalues of (part, whole).
+  const Matrix6d left = llt.matrixL().solve(part);
+  const Matrix6d scaled = llt.matrixL().solve(left.transpose());
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(0.5 * (scaled + scaled.transpose()),
+                                                    Eigen::EigenvaluesOnly);
+  return eig.eigenvalues()(0);
 }
 
 /// An LDLT that succeeded with a positive definite D.
@@ -165,7 +188,8 @@ double regrid_correction(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
 CostEvaluation evaluate_cost(const std::vector<Distribution>& source, const VoxelMap& map,
                              const CorrespondenceSearch& search, const Eigen::Isometry3d& pose,
                              const RegistrationConfig& config, NearestCache* cache,
-                             const std::vector<double>* times, TimeWeightedSums* timed) {
+                             const std::vector<double>* times, TimeWeightedSums* timed,
+                             bool with_gated_round) {
   const double max_distance = config.max_correspondence_distance > 0.0
                                   ? config.max_correspondence_distance
                                   : map.voxel_size();
@@ -191,9 +215,10 @@ CostEvaluation evaluate_cost(const std::vector<Distribution>& source, const Voxe
             if (match < 0) continue;
             if (with_times) {
               accumulate_correspondence(source[i], targets[match], pose, config, partial[b],
-                                        (*times)[i], &partial_timed[b]);
+                                        with_gated_round, (*times)[i], &partial_timed[b]);
             } else {
-              accumulate_correspondence(source[i], targets[match], pose, config, partial[b]);
+              accumulate_correspondence(source[i], targets[match], pose, config, partial[b],
+                                        with_gated_round);
             }
           }
         }
@@ -231,7 +256,18 @@ RegistrationResult register_distributions(const std::vector<Distribution>& sourc
   active.normal_only_ratio = 0.0;
   int normal_only_steps = 0;
   for (int iteration = 0; iteration < config.max_iterations; ++iteration) {
-    CostEvaluation eval = evaluate_cost(source, map, search, result.pose, active, &cache);
+    // The isotropy gate only while what it keeps holds every direction of the pose
+    // (RegistrationConfig::isotropy_min_information), judged at the first iteration.
+    const bool judge_gate =
+        iteration == 0 && active.max_isotropy < 1.0 && config.isotropy_min_information > 0.0;
+    CostEvaluation eval = evaluate_cost(source, map, search, result.pose, active, &cache, nullptr,
+                                        nullptr, judge_gate);
+    if (judge_gate &&
+        smallest_information_share(eval.hessian, eval.hessian + eval.gated_round_hessian) <
+            config.isotropy_min_information) {
+      active.max_isotropy = 1.0;
+      eval = evaluate_cost(source, map, search, result.pose, active, &cache);
+    }
     if ((active.max_isotropy < 1.0 || active.line_gate > 0.0) &&
         (eval.correspondences < config.min_correspondences ||
          eval.correspondences < config.isotropy_min_share * eval.matched)) {

@@ -57,6 +57,9 @@ void validate(const TrackerConfig& c) {
   require(r.cov_min_points >= 0, "registration.cov_min_points", r.cov_min_points, "at least 0");
   require(r.max_isotropy > 0.0 && r.max_isotropy <= 1.0, "registration.max_isotropy",
           r.max_isotropy, "in (0, 1]; 1 keeps every correspondence");
+  require(r.isotropy_min_information >= 0.0 && r.isotropy_min_information <= 1.0,
+          "registration.isotropy_min_information", r.isotropy_min_information,
+          "in [0, 1]; 0 always gates");
   require(r.isotropy_min_share >= 0.0 && r.isotropy_min_share <= 1.0,
           "registration.isotropy_min_share", r.isotropy_min_share, "in [0, 1]; 0 always gates");
   require(r.line_gate >= 0.0 && r.line_gate < 1.0, "registration.line_gate", r.line_gate,

@@ -66,6 +66,7 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   config.prediction.learn_max_error_m = 1.5;
   config.prediction.learn_max_error_deg = 7.5;
   config.deskew.sweep_motion.min_speed_mps = 12.5;
+  config.registration.isotropy_min_information = 0.625;
   const TrackerConfig back = tracker_config_from_yaml(YAML::Load(tracker_config_to_yaml(config)));
   EXPECT_EQ(tracker_config_to_yaml(back), tracker_config_to_yaml(config));
   EXPECT_EQ(back.voxelizer.voxel_size, 2.5);
@@ -91,6 +92,7 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   EXPECT_EQ(back.prediction.learn_max_error_m, 1.5);
   EXPECT_EQ(back.prediction.learn_max_error_deg, 7.5);
   EXPECT_EQ(back.deskew.sweep_motion.min_speed_mps, 12.5);
+  EXPECT_EQ(back.registration.isotropy_min_information, 0.625);
 }
 
 TEST(TrackerConfigYaml, ErrorsNameKeyAndValue) {

@@ -111,6 +111,9 @@ TEST(Registration, RobustNewtonReachesTheWeightedIterationsPoseInFewerIterations
     const PointCloud source =
         testing::transformed(testing::synthetic_scene(2, kSparsePoints), truth.inverse());
     RegistrationConfig config;
+    // The isotropy gate always on, as when written: on this sparse scene
+    // isotropy_min_information drops it, and both iterations then take 14.
+    config.isotropy_min_information = 0.0;
     config.robust_newton = false;
     const RegistrationResult weighted =
         testing::register_clouds(target, source, Eigen::Isometry3d::Identity(), config);

@@ -48,6 +48,9 @@ struct CostEvaluation {
   /// semi-definite, subtracted from `hessian` for the Newton step. Not in `hessian`, which
   /// stays the weighted Gauss-Newton Hessian that the odometry covariance is made from.
   Matrix6d robust_curvature = Matrix6d::Zero();
+  /// The ICP term's Hessian (Eq. 3, weight Eq. 5) of the correspondences the isotropy gate
+  /// left out; summed only when evaluate_cost is asked to (with_gated_round).
+  Matrix6d gated_round_hessian = Matrix6d::Zero();
   /// Correspondences used (after the registration gates).
   int correspondences = 0;
   /// Source distributions with a map distribution within the search radius (before the gates).
@@ -68,12 +71,12 @@ struct TimeWeightedSums {
 /// Evaluates the cost of `source` (in its own frame) against `map` at `pose`. With a cache
 /// (one slot per source distribution, over the same search), correspondences are looked up
 /// through it: the same ones, fewer searches. With `times` (one per source distribution) and
-/// `timed`, also fills `timed`.
+/// `timed`, also fills `timed`. With `with_gated_round`, also sums gated_round_hessian.
 CostEvaluation evaluate_cost(const std::vector<Distribution>& source, const VoxelMap& map,
                              const CorrespondenceSearch& search, const Eigen::Isometry3d& pose,
                              const RegistrationConfig& config, NearestCache* cache = nullptr,
                              const std::vector<double>* times = nullptr,
-                             TimeWeightedSums* timed = nullptr);
+                             TimeWeightedSums* timed = nullptr, bool with_gated_round = false);
 
 /// How far `b` is from `a` in units of the re-grid tolerances (RegistrationConfig::
 /// regrid_translation, regrid_rotation_deg): above 1 the scan is voxelised again at `b`.

@@ -63,6 +63,18 @@ struct RegistrationConfig {
   /// 56-60 %; on the real VLP-16 drive 13 %, which leaves too few walls to fix the horizontal
   /// pose (docs/accuracy.md, "Sparse sensors"). Set by the sparse sensors' presets.
   double isotropy_min_share = 0.0;
+  /// The isotropy gate is applied only while the correspondences it keeps hold at least this
+  /// share of the information of all of them in every direction of the pose (0: always): the
+  /// smallest generalised eigenvalue of (H_gated, H_gated + H_round) at a registration's first
+  /// iteration, H_round the ICP term's Hessian (Eq. 3, 5) of the correspondences the gate
+  /// leaves out. On a highway the planes (road, barriers) hold little along the road and the
+  /// round voxels (vegetation, posts) hold it: harder simulated 01 HDL-64 3.14 -> 1.85 %
+  /// (seeds 2, 3: 0.56x, 0.61x; with deskew 0.40-0.56x), urban street 0.84-1.03x (with deskew
+  /// 0.96-1.17x), the default world's urban sequences unchanged, its highway without sweep
+  /// motion 1.5-1.7x worse (a round voxel's mean moves with the viewpoint). 0.2 changed
+  /// little; 0.4 and 0.5 cost the default world up to 1.5x (docs/accuracy.md, "The isotropy
+  /// gate on a highway").
+  double isotropy_min_information = 0.3;
   /// Correspondences whose combined covariance Cq + R Cp R^T (Eq. 3) is a line, middle over
   /// largest eigenvalue below this, are left out of both terms (0: none, as in the paper); for
   /// two equal arcs at an angle a that ratio is (1 - cos a) / (1 + cos a), 0.1 at 35 deg. A
