@@ -2,6 +2,7 @@
 
 #include "litamin2/core/cov_term.hpp"
 #include "litamin2/core/icp_term.hpp"
+#include "litamin2/core/information_share.hpp"
 #include "litamin2/core/robust_weight.hpp"
 #include "litamin2/core/so3.hpp"
 
@@ -10,7 +11,6 @@
 #include <tbb/partitioner.h>
 
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -123,21 +123,6 @@ void add_into(CostEvaluation& total, const CostEvaluation& part) {
   total.correspondences += part.correspondences;
   total.matched += part.matched;
   total.inliers += part.inliers;
-}
-
-/// The smallest generalised eigenvalue of (part, whole): the least share of `whole`'s
-/// information that `part` holds in any direction of the pose (0 where `whole` is not
-/// positive definite).
-double smallest_information_share(const Matrix6d& part, const Matrix6d& whole) {
-  if (!part.allFinite() || !whole.allFinite()) return 0.0;
-  const Eigen::LLT<Matrix6d> llt(whole);
-  if (llt.info() != Eigen::Success) return 0.0;
-  // L^-1 part L^-T has the generalised eigenvalues of (part, whole).
-  const Matrix6d left = llt.matrixL().solve(part);
-  const Matrix6d scaled = llt.matrixL().solve(left.transpose());
-  const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(0.5 * (scaled + scaled.transpose()),
-                                                    Eigen::EigenvaluesOnly);
-  return eig.eigenvalues()(0);
 }
 
 /// An LDLT that succeeded with a positive definite D.

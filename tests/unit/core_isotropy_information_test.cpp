@@ -2,6 +2,7 @@
 // (RegistrationConfig::isotropy_min_information): on a highway the road and the barriers are
 // planes whose normals say nothing along the road, and the round voxels (shrubs) do.
 
+#include "litamin2/core/information_share.hpp"
 #include "litamin2/core/registration_config.hpp"
 #include "support/register_clouds.hpp"
 #include "support/synthetic_scene.hpp"
@@ -12,6 +13,44 @@
 
 namespace litamin2 {
 namespace {
+
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+TEST(InformationShare, IsTheLeastShareOverEveryDirection) {
+  // A random positive definite whole, and a part that holds it all but a share s along one
+  // direction u: part = whole - (1 - s) (whole u)(whole u)^T / (u^T whole u).
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal;
+  Matrix6d a;
+  for (int i = 0; i < 36; ++i) a(i / 6, i % 6) = normal(rng);
+  const Matrix6d whole = a * a.transpose() + Matrix6d::Identity();
+  Eigen::Matrix<double, 6, 1> u;
+  for (int i = 0; i < 6; ++i) u(i) = normal(rng);
+  const Eigen::Matrix<double, 6, 1> wu = whole * u;
+  for (const double share : {0.0, 0.05, 0.3, 0.9}) {
+    const Matrix6d part = whole - (1.0 - share) * wu * wu.transpose() / u.dot(wu);
+    EXPECT_NEAR(smallest_information_share(part, whole), share, 1e-9) << share;
+    // Along u itself the ratio is the share; no direction gives less.
+    EXPECT_NEAR(u.dot(part * u) / u.dot(whole * u), share, 1e-9);
+    for (int k = 0; k < 100; ++k) {
+      Eigen::Matrix<double, 6, 1> v;
+      for (int i = 0; i < 6; ++i) v(i) = normal(rng);
+      EXPECT_GE(v.dot(part * v) / v.dot(whole * v), share - 1e-9);
+    }
+  }
+  EXPECT_NEAR(smallest_information_share(whole, whole), 1.0, 1e-9);
+  // Units do not matter: a rotation block in degrees instead of radians gives the same share.
+  Matrix6d scale = Matrix6d::Identity();
+  scale.topLeftCorner<3, 3>() *= 180.0 / M_PI;
+  const Matrix6d part = whole - 0.7 * wu * wu.transpose() / u.dot(wu);
+  EXPECT_NEAR(smallest_information_share(scale * part * scale, scale * whole * scale),
+              smallest_information_share(part, whole), 1e-9);
+  // A whole that is not positive definite, or not finite: no share.
+  EXPECT_EQ(smallest_information_share(part, Matrix6d::Zero()), 0.0);
+  Matrix6d bad = whole;
+  bad(2, 3) = std::nan("");
+  EXPECT_EQ(smallest_information_share(part, bad), 0.0);
+}
 
 /// A straight highway along x: the road (z = 0, |y| < 8), a 1 m barrier at each edge
 /// (y = +-8), and a shrub (a 0.7 m ball of points) every `shrub_spacing` m beyond each barrier.
