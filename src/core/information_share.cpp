@@ -5,9 +5,7 @@
 
 namespace litamin2 {
 
-double smallest_information_share(const Eigen::Matrix<double, 6, 6>& part,
-                                  const Eigen::Matrix<double, 6, 6>& whole) {
-  using Matrix6d = Eigen::Matrix<double, 6, 6>;
+double smallest_information_share(const Matrix6d& part, const Matrix6d& whole) {
   if (!part.allFinite() || !whole.allFinite()) return 0.0;
   const Eigen::LLT<Matrix6d> llt(whole);
   if (llt.info() != Eigen::Success) return 0.0;

@@ -14,8 +14,6 @@
 namespace litamin2 {
 namespace {
 
-using Matrix6d = Eigen::Matrix<double, 6, 6>;
-
 TEST(InformationShare, IsTheLeastShareOverEveryDirection) {
   // A random positive definite whole, and a part that holds it all but a share s along one
   // direction u: part = whole - (1 - s) (whole u)(whole u)^T / (u^T whole u).
@@ -24,16 +22,16 @@ TEST(InformationShare, IsTheLeastShareOverEveryDirection) {
   Matrix6d a;
   for (int i = 0; i < 36; ++i) a(i / 6, i % 6) = normal(rng);
   const Matrix6d whole = a * a.transpose() + Matrix6d::Identity();
-  Eigen::Matrix<double, 6, 1> u;
+  Vector6d u;
   for (int i = 0; i < 6; ++i) u(i) = normal(rng);
-  const Eigen::Matrix<double, 6, 1> wu = whole * u;
+  const Vector6d wu = whole * u;
   for (const double share : {0.0, 0.05, 0.3, 0.9}) {
     const Matrix6d part = whole - (1.0 - share) * wu * wu.transpose() / u.dot(wu);
     EXPECT_NEAR(smallest_information_share(part, whole), share, 1e-9) << share;
     // Along u itself the ratio is the share; no direction gives less.
     EXPECT_NEAR(u.dot(part * u) / u.dot(whole * u), share, 1e-9);
     for (int k = 0; k < 100; ++k) {
-      Eigen::Matrix<double, 6, 1> v;
+      Vector6d v;
       for (int i = 0; i < 6; ++i) v(i) = normal(rng);
       EXPECT_GE(v.dot(part * v) / v.dot(whole * v), share - 1e-9);
     }
