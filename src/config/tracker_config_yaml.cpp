@@ -139,6 +139,7 @@ TrackerConfig tracker_config_from_yaml(const YAML::Node& node, const TrackerConf
   registration.read_enum("mode", r.mode, kModes);
   read_managed(registration, "sigma_icp", r.sigma_icp);
   registration.read("sigma_cov", r.sigma_cov);
+  registration.read("sigma_cov_after_handover", r.sigma_cov_after_handover);
   read_managed(registration, "cov_min_points", r.cov_min_points);
   read_managed(registration, "max_isotropy", r.max_isotropy);
   read_managed(registration, "isotropy_min_share", r.isotropy_min_share);
@@ -269,6 +270,7 @@ std::string tracker_config_to_yaml(const TrackerConfig& c) {
   out << YAML::Key << "mode" << YAML::Value << enum_name(r.mode, kModes);
   out << YAML::Key << "sigma_icp" << YAML::Value << r.sigma_icp;
   out << YAML::Key << "sigma_cov" << YAML::Value << r.sigma_cov;
+  out << YAML::Key << "sigma_cov_after_handover" << YAML::Value << r.sigma_cov_after_handover;
   out << YAML::Key << "cov_min_points" << YAML::Value << r.cov_min_points;
   out << YAML::Key << "max_isotropy" << YAML::Value << r.max_isotropy;
   out << YAML::Key << "isotropy_min_share" << YAML::Value << r.isotropy_min_share;

@@ -129,6 +129,7 @@ void Tracker::apply_seed(const TrackerSeed& seed) {
   // with an interval) use the seed's map and motion; without a known motion, as one frame.
   frames_ = seed.interval_s > 0.0 ? 2 : 1;
   last_interval_ = seed.interval_s;
+  seeded_scan_ = true;
 }
 
 FrameResult Tracker::process(const PointCloud& raw) {
@@ -151,7 +152,7 @@ Tracker::RegistrationStart Tracker::registration_start(const PointCloud& scan, d
   // Each registration's time goes to `spent`; the kept one is handed on without it.
   const auto registered_from = [&](const Eigen::Isometry3d& start) {
     ScanRegistration r =
-        register_scan(scan, voxelizer_, map_, *search_, start, config_.registration);
+        register_scan(scan, voxelizer_, map_, *search_, start, frame_registration_);
     spent.voxelize_ms += r.voxelize_ms;
     spent.register_ms += r.register_ms;
     r.voxelize_ms = r.register_ms = 0.0;
@@ -246,12 +247,21 @@ std::vector<Eigen::Isometry3d> Tracker::retry_starts(const std::vector<Distribut
 
 ScanRegistration Tracker::register_from(const PointCloud& scan, RegistrationStart& start) {
   if (start.registered) return std::move(*start.registered);
-  return register_scan(scan, voxelizer_, map_, *search_, start.pose, config_.registration);
+  return register_scan(scan, voxelizer_, map_, *search_, start.pose, frame_registration_);
+}
+
+void Tracker::choose_frame_registration() {
+  frame_registration_ = config_.registration;
+  // The first scan after a handover starts far from the optimum: the Cov term's wider basin
+  // (RegistrationConfig::sigma_cov_after_handover).
+  if (seeded_scan_ && config_.registration.sigma_cov_after_handover > 0.0)
+    frame_registration_.sigma_cov = config_.registration.sigma_cov_after_handover;
 }
 
 FrameResult Tracker::process_scaled(const PointCloud& raw, double motion_scale,
                                     std::optional<int> self_hits_removed, double interval_s) {
   prepare_first_scan(raw);
+  choose_frame_registration();
   FrameResult frame;
   if (self_hits_removed) frame.self_hits = *self_hits_removed;
   const PointCloud& scan = self_hits_removed ? raw : without_self_hits(raw, frame.self_hits);
@@ -279,7 +289,7 @@ FrameResult Tracker::process_scaled(const PointCloud& raw, double motion_scale,
             frame.recovered)
           break;
         ScanRegistration other =
-            register_scan(scan, voxelizer_, map_, *search_, other_starts[k], config_.registration);
+            register_scan(scan, voxelizer_, map_, *search_, other_starts[k], frame_registration_);
         ++frame.retry_registrations;
         const double other_share = other.result.valid ? other.inlier_share() : 0.0;
         registration.voxelize_ms += other.voxelize_ms;
@@ -304,7 +314,7 @@ FrameResult Tracker::process_scaled(const PointCloud& raw, double motion_scale,
         registration.register_ms += elapsed_ms(start);
         for (const PoseCandidate& candidate : candidates) {
           ScanRegistration other =
-              register_scan(scan, voxelizer_, map_, *search_, candidate.pose, config_.registration);
+              register_scan(scan, voxelizer_, map_, *search_, candidate.pose, frame_registration_);
           const double other_share = other.result.valid ? other.inlier_share() : 0.0;
           registration.voxelize_ms += other.voxelize_ms;
           registration.register_ms += other.register_ms;
@@ -328,7 +338,7 @@ FrameResult Tracker::process_scaled(const PointCloud& raw, double motion_scale,
       // restarted from the suspected scan as frames usually fit, the break is confirmed and the
       // old map, which may no longer be where it is drawn, is dropped.
       ScanRegistration fresh = register_scan(scan, voxelizer_, *break_map_, *break_search_,
-                                             predicted, config_.registration);
+                                             predicted, frame_registration_);
       const double fresh_share = fresh.result.valid ? fresh.inlier_share() : 0.0;
       fresh.voxelize_ms += registration.voxelize_ms;
       fresh.register_ms += registration.register_ms;
@@ -420,6 +430,7 @@ FrameResult Tracker::process_scaled(const PointCloud& raw, double motion_scale,
   pose_ = estimate;
   frame.pose = estimate;
   ++frames_;
+  seeded_scan_ = false;
   return frame;
 }
 

@@ -70,6 +70,8 @@ void validate(const TrackerConfig& c) {
           r.normal_only_iterations, "at least 1");
   require(r.normal_only_start_factor >= 1.0, "registration.normal_only_start_factor",
           r.normal_only_start_factor, "at least 1; 1 starts the refinement once converged");
+  require(r.sigma_cov_after_handover >= 0.0, "registration.sigma_cov_after_handover",
+          r.sigma_cov_after_handover, "at least 0; 0 is sigma_cov after a handover too");
   require(r.normal_only_thickness >= 0.0, "registration.normal_only_thickness",
           r.normal_only_thickness, "at least 0; 0 weighs every plane alike");
   require(r.lambda >= 0.0, "registration.lambda", r.lambda, "at least 0");

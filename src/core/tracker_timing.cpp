@@ -63,6 +63,7 @@ FrameResult Tracker::process(const PointCloud& scan, const SweepTiming& timing) 
   // Constant velocity in time (PredictionConfig): the last motion spans last_interval_, this
   // scan comes `interval` after the last one (longer when files were dropped).
   const double motion_scale = prediction_scale(interval);
+  choose_frame_registration();
   StageTimes first_pass;
   if (times) {
     // Pass 1: the motion within this sweep predicted by constant velocity, the previous frame's
@@ -136,9 +137,8 @@ void Tracker::correct_sweep_motion(const PointCloud& measured, const std::vector
   const DistributionTimes source_times = distribution_times(deskewed_, times, voxelizer_);
   spent.voxelize_ms += elapsed_ms(start);
   start = std::chrono::steady_clock::now();
-  const SweepMotionResult sweep =
-      register_with_sweep_motion(source, source_times, map_, *search_, pose, config_.registration,
-                                 config_.deskew.sweep_motion);
+  const SweepMotionResult sweep = register_with_sweep_motion(
+      source, source_times, map_, *search_, pose, frame_registration_, config_.deskew.sweep_motion);
   spent.register_ms += elapsed_ms(start);
   if (!sweep.valid) return;
   twist.angular += sweep.correction.angular;

@@ -24,7 +24,7 @@ TEST(TrackerConfigYaml, EmptyDocumentGivesDefaults) {
   EXPECT_EQ(config.voxelizer.voxel_size, TrackerConfig{}.voxelizer.voxel_size);
   EXPECT_EQ(config.registration.mode, CostMode::kIcpCov);
   EXPECT_EQ(config.registration.sigma_icp, 0.1);
-  EXPECT_EQ(config.registration.sigma_cov, 3.0);
+  EXPECT_EQ(config.registration.sigma_cov, 0.3);
   EXPECT_EQ(config.registration.lambda, 1e-6);
 }
 
@@ -49,6 +49,7 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   config.registration.normal_only_ratio = 0.75;
   config.registration.normal_only_iterations = 3;
   config.registration.normal_only_start_factor = 7.5;
+  config.registration.sigma_cov_after_handover = 0.7;
   config.registration.normal_only_thickness = 0.0625;
   config.recovery.reset_ratio = 0.375;
   config.recovery.min_gain = 1.25;
@@ -75,6 +76,7 @@ TEST(TrackerConfigYaml, RoundTripKeepsEveryValue) {
   EXPECT_EQ(back.registration.normal_only_ratio, 0.75);
   EXPECT_EQ(back.registration.normal_only_iterations, 3);
   EXPECT_EQ(back.registration.normal_only_start_factor, 7.5);
+  EXPECT_EQ(back.registration.sigma_cov_after_handover, 0.7);
   EXPECT_EQ(back.registration.normal_only_thickness, 0.0625);
   EXPECT_EQ(back.recovery.reset_ratio, 0.375);
   EXPECT_EQ(back.recovery.min_gain, 1.25);
@@ -127,6 +129,9 @@ TEST(TrackerConfigYaml, ErrorsNameKeyAndValue) {
             std::string::npos);
   EXPECT_NE(error_of("registration: {normal_only_thickness: -0.1}")
                 .find("registration.normal_only_thickness: -0.1"),
+            std::string::npos);
+  EXPECT_NE(error_of("registration: {sigma_cov_after_handover: -0.3}")
+                .find("registration.sigma_cov_after_handover: -0.3"),
             std::string::npos);
   EXPECT_NE(error_of("registration: {normal_only_start_factor: 0.5}")
                 .find("registration.normal_only_start_factor: 0.5"),

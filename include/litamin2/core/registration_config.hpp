@@ -33,8 +33,21 @@ struct RegistrationConfig {
   /// simulated sequences and closer agreement on the real KITTI pair (docs/accuracy.md). Below
   /// 0.05 icp+cov diverges: the Cov term (sigma_cov fixed) then outweighs the ICP term.
   double sigma_icp = 0.1;
-  /// Robust-weight scale of the Cov term (paper: 3).
-  double sigma_cov = 3.0;
+  /// Robust-weight scale of the Cov term (paper: 3). With Table 1's linear energy, 3 weights
+  /// every shape disagreement f < 9 nearly fully, and the Cov term's pull on the rotation then
+  /// outweighs the ICP term's: the ICP term alone drifted 0.90x as much over 16 simulated runs.
+  /// 0.3 weights the typical f ~ 0.8 of a well-populated voxel at the true pose by ~0.1 (Eq.
+  /// 5's w = sigma^2 / (f + sigma^2)) and more disagreeing ones less: 0.88x the drift of 3 over
+  /// those runs, 0.90x over 10 with deskew (docs/accuracy.md, "The Cov term's weight").
+  double sigma_cov = 0.3;
+  /// sigma_cov for the first scan of a stream taken over from another daemon (a TrackerSeed):
+  /// its start is the stream's last pose carried over the gap at its last twist, metres and
+  /// degrees off, where the Cov term's pull towards the map's shapes, whatever the
+  /// translation, widens the basin. 0: sigma_cov. With 0.3 a stream taken over after a 2.1 s
+  /// gap ended 1.09 m ATE off, with 3 0.04 m (tests/integration/multihost.sh, failover). Frames
+  /// dropped in the simulated street world (a prediction over 2-12 intervals) measured better
+  /// with sigma_cov: 16 runs 0.91x with 3 after such gaps against 0.88x without.
+  double sigma_cov_after_handover = 3.0;
   /// Added to the combined covariance before inversion (paper: 1e-6).
   double lambda = 1e-6;
   /// The Cov term is applied only to correspondences whose source and map distributions both

@@ -200,6 +200,9 @@ class Tracker {
   /// Before the first scan: applies `sensor: auto`'s preset, then the pending seed (if any).
   void prepare_first_scan(const PointCloud& raw);
   void apply_seed(const TrackerSeed& seed);
+  /// Sets frame_registration_ for this frame: sigma_cov_after_handover's Cov term for the
+  /// first scan after a seed.
+  void choose_frame_registration();
   /// Replaces the map (the first scan alone) by the first scan deskewed with `twist`.
   void rebuild_first_keyframe(const Twist& twist);
   /// Estimates the correction of `twist` with the pose from `pose` (sweep_motion.hpp) and, if
@@ -208,6 +211,10 @@ class Tracker {
                             const Eigen::Isometry3d& pose, Twist& twist, StageTimes& spent);
 
   TrackerConfig config_;
+  /// config_.registration as this frame's registrations use it (choose_frame_registration).
+  RegistrationConfig frame_registration_;
+  /// The scan being processed is the first after apply_seed (a handover).
+  bool seeded_scan_ = false;
   EgoLearner ego_;
   PointCloud filtered_;
   Voxelizer voxelizer_;
