@@ -179,7 +179,7 @@ TEST(NormalOnly, StartedBeforeConvergenceTheRefinementEndsWhereItDidAfter) {
               delta.translation().norm(), Eigen::AngleAxisd(delta.linear()).angle() * 180 / M_PI);
 }
 
-/// The street above (walls not cut) with shrubs: at each of `kShrubs` places on the ground an
+/// The street above (walls not cut) with shrubs: at each of six places on the ground an
 /// elongated blob of 300 points (standard deviations 0.6, 0.3, 0.2 m) about the same centre in
 /// every cloud, turned by a random rotation drawn from `shrub_seed`: a shrub's shape depends on
 /// how it is seen (foliage, viewpoint), its place does not.
