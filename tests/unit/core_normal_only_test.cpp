@@ -1,9 +1,7 @@
 // The normal-only ICP term (RegistrationConfig::normal_only_ratio, keep_normal_only): a
 // plane-like combined precision keeps its normal alone; a line's is left whole; and a scan whose
 // wall voxels are cut lower than the map's (as the top ring cuts a near wall lower than a far
-// one) registers at its true pose only with it. And the Cov term's weight (Eq. 5's sigma_cov):
-// shrubs whose shapes differ between scan and map turn the result with the paper's 3, not with
-// the default 0.3.
+// one) registers at its true pose only with it.
 
 #include "litamin2/core/correspondence_search.hpp"
 #include "litamin2/core/icp_term.hpp"
@@ -11,6 +9,7 @@
 #include "litamin2/core/so3.hpp"
 #include "litamin2/core/voxel_map.hpp"
 #include "litamin2/core/voxelizer.hpp"
+#include "support/walled_street.hpp"
 
 #include <gtest/gtest.h>
 
@@ -19,6 +18,8 @@
 
 namespace litamin2 {
 namespace {
+
+using testing::walled_street;
 
 Eigen::Matrix3d oriented(const Eigen::Matrix3d& rotation, double a, double b, double c) {
   return rotation * Eigen::Vector3d(a, b, c).asDiagonal() * rotation.transpose();
@@ -76,44 +77,6 @@ TEST(NormalOnly, APlanesThicknessWeightIsHalfAtTau) {
   EXPECT_EQ(plane_thickness_weight(0.5, 0.0), 1.0);  // off
 }
 
-/// A street between walls, each plane in the middle of its voxels and no two in one voxel:
-/// ground (z = -1.5) over |x| < 12, |y| < 6; walls along x at y = +-7.5 (|x| < 12) and across it
-/// at x = +-13.5 (|y| < 6), from z = -1.5 to 4.5, with 0.1 m of relief (vertical ribs, the same
-/// in every cloud), so that in-plane offsets weigh in Eq. 3's precision. The side walls' points
-/// stop at `top_ahead` for x > 0 and at `top_behind` for x < 0.
-PointCloud street(double top_ahead, double top_behind, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> noise(0.0, 0.005);
-  PointCloud cloud;
-  auto add = [&](double x, double y, double z) {
-    cloud.points.push_back(
-        Eigen::Vector3d(x + noise(rng), y + noise(rng), z + noise(rng)).cast<float>());
-  };
-  // The same relief in every cloud: the clouds differ only where the side walls are cut.
-  auto add_wall = [&](double x, double y, double z, const Eigen::Vector3d& normal) {
-    const double along = normal.x() != 0.0 ? y : x;
-    const double relief = 0.1 * std::sin(2.0 * M_PI * along / 0.9);
-    add(x, y, z);
-    cloud.points.back() += (relief * normal).cast<float>();
-  };
-  const double step = 0.25;
-  for (double x = -11.9; x < 12.0; x += step) {
-    for (double y = -5.9; y < 6.0; y += step) add(x, y, -1.5);
-    const double top = x > 0.0 ? top_ahead : top_behind;
-    for (double z = -1.4; z < top; z += step) {
-      add_wall(x, -7.5, z, Eigen::Vector3d::UnitY());
-      add_wall(x, 7.5, z, Eigen::Vector3d::UnitY());
-    }
-  }
-  for (double y = -5.9; y < 6.0; y += step) {
-    for (double z = -1.4; z < 4.5; z += step) {
-      add_wall(-13.5, y, z, Eigen::Vector3d::UnitX());
-      add_wall(13.5, y, z, Eigen::Vector3d::UnitX());
-    }
-  }
-  return cloud;
-}
-
 /// The pose the scan cut at 3.5 m ahead and 4 m behind registers at, against the whole street,
 /// from `initial` (the true pose is the identity).
 RegistrationResult register_cut_walls(
@@ -122,10 +85,10 @@ RegistrationResult register_cut_walls(
   VoxelizerConfig voxels;
   voxels.min_range = 0.0;
   VoxelMap map(voxels, VoxelMapConfig{});
-  map.insert(street(4.5, 4.5, 1), Eigen::Isometry3d::Identity());
+  map.insert(walled_street(4.5, 4.5, 1), Eigen::Isometry3d::Identity());
   const auto search = make_correspondence_search(CorrespondenceMethod::kKdTree, map);
   Voxelizer voxelizer(voxels);
-  const std::vector<Distribution> source = voxelizer.voxelize(street(3.5, 4.0, 2));
+  const std::vector<Distribution> source = voxelizer.voxelize(walled_street(3.5, 4.0, 2));
   RegistrationConfig config;
   config.mode = CostMode::kIcp;
   config.max_isotropy = 1.0;
@@ -177,65 +140,6 @@ TEST(NormalOnly, StartedBeforeConvergenceTheRefinementEndsWhereItDidAfter) {
   EXPECT_LT(Eigen::AngleAxisd(delta.linear()).angle() * 180.0 / M_PI, 1e-4);
   std::printf("iterations %d -> %d; apart %.2e m %.2e deg\n", after.iterations, before.iterations,
               delta.translation().norm(), Eigen::AngleAxisd(delta.linear()).angle() * 180 / M_PI);
-}
-
-/// The street above (walls not cut) with shrubs: at each of six places on the ground an
-/// elongated blob of 300 points (standard deviations 0.6, 0.3, 0.2 m) about the same centre in
-/// every cloud, turned by a random rotation drawn from `shrub_seed`: a shrub's shape depends on
-/// how it is seen (foliage, viewpoint), its place does not.
-PointCloud street_with_shrubs(unsigned seed, unsigned shrub_seed) {
-  PointCloud cloud = street(4.5, 4.5, seed);
-  std::mt19937 rng(seed + 100);
-  std::mt19937 turns(shrub_seed);
-  std::normal_distribution<double> n(0.0, 1.0);
-  const Eigen::Vector3d centres[] = {{-9.0, -4.0, -0.8}, {-3.0, 4.5, -0.8}, {3.0, -4.5, -0.8},
-                                     {9.0, 4.0, -0.8},   {-6.0, 1.5, -0.8}, {6.0, -1.5, -0.8}};
-  for (const Eigen::Vector3d& centre : centres) {
-    const Eigen::Matrix3d turn = so3_exp(Eigen::Vector3d(n(turns), n(turns), n(turns)));
-    for (int i = 0; i < 300; ++i) {
-      const Eigen::Vector3d local(0.6 * n(rng), 0.3 * n(rng), 0.2 * n(rng));
-      cloud.points.push_back((centre + turn * local).cast<float>());
-    }
-  }
-  return cloud;
-}
-
-/// The shrub street's scan registered from the true pose (the identity) against its map, with
-/// both terms (Eq. 3 and 4) and the Cov term's `sigma_cov`, or with the ICP term alone; with the
-/// angle error in degrees.
-std::pair<RegistrationResult, double> register_shrubs(double sigma_cov,
-                                                      CostMode mode = CostMode::kIcpCov) {
-  VoxelizerConfig voxels;
-  voxels.min_range = 0.0;
-  VoxelMap map(voxels, VoxelMapConfig{});
-  map.insert(street_with_shrubs(1, 11), Eigen::Isometry3d::Identity());
-  const auto search = make_correspondence_search(CorrespondenceMethod::kKdTree, map);
-  Voxelizer voxelizer(voxels);
-  const std::vector<Distribution> source = voxelizer.voxelize(street_with_shrubs(2, 12));
-  RegistrationConfig config;
-  config.mode = mode;
-  config.sigma_cov = sigma_cov;
-  config.max_isotropy = 1.0;
-  const RegistrationResult result =
-      register_distributions(source, map, *search, Eigen::Isometry3d::Identity(), config);
-  return {result, Eigen::AngleAxisd(result.pose.linear()).angle() * 180.0 / M_PI};
-}
-
-TEST(CovTermWeight, ShrubsWhoseShapesDisagreeTurnTheScanLessWithTheDefaultSigmaCov) {
-  // The shrubs' shapes disagree between scan and map, and Eq. 4 turns the scan to make them
-  // agree. With the paper's sigma_cov 3 every disagreement has nearly full weight and the result
-  // is turned more than the ICP term's alone; with the default 0.3 the turn is gone.
-  const auto [paper, paper_deg] = register_shrubs(3.0);
-  const auto [by_default, default_deg] = register_shrubs(RegistrationConfig{}.sigma_cov);
-  const auto [icp, icp_deg] = register_shrubs(3.0, CostMode::kIcp);
-  ASSERT_TRUE(paper.valid);
-  ASSERT_TRUE(by_default.valid);
-  ASSERT_TRUE(icp.valid);
-  EXPECT_GT(paper_deg, 1.1 * icp_deg);
-  EXPECT_LT(default_deg, 1.05 * icp_deg);
-  EXPECT_LT(default_deg, 0.9 * paper_deg);
-  std::printf("icp alone %.4f deg; sigma_cov 3 %.4f deg; %.1f %.4f deg\n", icp_deg, paper_deg,
-              RegistrationConfig{}.sigma_cov, default_deg);
 }
 
 }  // namespace
