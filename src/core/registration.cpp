@@ -3,6 +3,7 @@
 #include "litamin2/core/cov_term.hpp"
 #include "litamin2/core/icp_term.hpp"
 #include "litamin2/core/information_share.hpp"
+#include "litamin2/core/rank_one_update.hpp"
 #include "litamin2/core/robust_weight.hpp"
 #include "litamin2/core/so3.hpp"
 
@@ -71,8 +72,8 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
   out.gradient += w_icp * icp.gradient;
   out.hessian += w_icp * icp.hessian;
   if (config.robust_newton) {
-    out.robust_curvature.selfadjointView<Eigen::Upper>().rankUpdate(
-        icp.gradient, robust_weight_curvature(icp.energy, config.sigma_icp));
+    add_upper_rank_one(out.robust_curvature, icp.gradient,
+                       robust_weight_curvature(icp.energy, config.sigma_icp));
   }
   ++out.correspondences;
   if (w_icp >= 0.5) ++out.inliers;

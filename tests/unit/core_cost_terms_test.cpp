@@ -4,6 +4,7 @@
 #include "litamin2/core/cov_term.hpp"
 #include "litamin2/core/covariance_regularizer.hpp"
 #include "litamin2/core/icp_term.hpp"
+#include "litamin2/core/rank_one_update.hpp"
 #include "litamin2/core/robust_weight.hpp"
 #include "litamin2/core/so3.hpp"
 
@@ -160,6 +161,61 @@ TEST(IcpTerm, GradientMatchesFiniteDifferencesAndHessianIsGaussNewton) {
             (energy0(a + b) - energy0(a - b) - energy0(-a + b) + energy0(-a - b)) / (4 * h2 * h2);
         EXPECT_NEAR(at_zero.hessian(i, j), numeric, 1e-4 * std::max(1.0, std::abs(numeric)))
             << "hessian " << i << j;
+      }
+    }
+  }
+}
+
+/// Exact equality where the compiler may not fuse a multiply and an add (no FMA in the target:
+/// the portable build), where the written-out forms and Eigen's are the same operations;
+/// within rounding otherwise.
+void expect_same_bits(const Matrix6d& written_out, const Matrix6d& dense) {
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j < 6; ++j) {
+#if defined(__FMA__)
+      EXPECT_NEAR(written_out(i, j), dense(i, j), 1e-12 * std::max(1.0, std::abs(dense(i, j))))
+          << i << "," << j;
+#else
+      EXPECT_EQ(written_out(i, j), dense(i, j)) << i << "," << j;
+#endif
+    }
+  }
+}
+
+TEST(IcpTerm, TheWrittenOutHessianIsTheDenseProductBitForBit) {
+  Random rnd;
+  for (int trial = 0; trial < 200; ++trial) {
+    const IcpCase icp_case = random_icp_case(rnd);
+    const Eigen::Vector3d y = icp_case.pose * icp_case.p;
+    Eigen::Matrix<double, 3, 6> jacobian;
+    jacobian.leftCols<3>() << 0.0, -y.z(), y.y(), y.z(), 0.0, -y.x(), -y.y(), y.x(), 0.0;
+    jacobian.rightCols<3>() = -Eigen::Matrix3d::Identity();
+    const Matrix6d dense = 2.0 * jacobian.transpose() * icp_case.precision * jacobian;
+    expect_same_bits(icp_hessian(y, icp_case.precision), dense);
+  }
+}
+
+TEST(RankOneUpdate, TheWrittenOutUpdateIsEigensBitForBit) {
+  Random rnd;
+  Matrix6d eigens = Matrix6d::Zero();
+  Matrix6d written_out = Matrix6d::Zero();
+  Matrix6d sum = Matrix6d::Zero();
+  for (int trial = 0; trial < 200; ++trial) {
+    Vector6d g;
+    g << rnd.vector(10.0), rnd.vector(1.0);
+    const double alpha = rnd.uniform(0.0, 2.0);
+    eigens.selfadjointView<Eigen::Upper>().rankUpdate(g, alpha);
+    add_upper_rank_one(written_out, g, alpha);
+    sum += alpha * g * g.transpose();
+  }
+  expect_same_bits(written_out, eigens);
+  // The upper triangle is the sum of alpha g g^T; the lower one is left as it was.
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j < 6; ++j) {
+      if (j >= i) {
+        EXPECT_NEAR(written_out(i, j), sum(i, j), 1e-9 * std::abs(sum(i, j))) << i << "," << j;
+      } else {
+        EXPECT_EQ(written_out(i, j), 0.0) << i << "," << j;
       }
     }
   }

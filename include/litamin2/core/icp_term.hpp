@@ -133,6 +133,31 @@ inline Eigen::Matrix<double, 6, 1> icp_gradient(const Eigen::Vector3d& y, const 
   return gradient;
 }
 
+/// The Gauss-Newton Hessian 2 J^T C J of the term with precision C, for y = R p + t, with
+/// J = [ [y]x  -I ] written out: P = 2 J^T C is ( 2 [y]x^T C ; -2 C ) and 2 J^T C J is
+/// ( P [y]x , -P ). Each entry is a sum of two products (the zeros of [y]x and I left out) or
+/// a negation, so it equals the dense product's bit for bit (adding a zero product is exact and
+/// a sum of two terms is the same in either order; scaling by 2 is exact); it costs about a
+/// third of the dense product's operations.
+inline Matrix6d icp_hessian(const Eigen::Vector3d& y, const Eigen::Matrix3d& precision) {
+  const Eigen::Vector3d t = 2.0 * y;
+  Eigen::Matrix<double, 6, 3> p;
+  for (int b = 0; b < 3; ++b) {
+    // Rows of [y]x^T: (0, z, -y), (-z, 0, x), (y, -x, 0).
+    p(0, b) = t.z() * precision(1, b) - t.y() * precision(2, b);
+    p(1, b) = t.x() * precision(2, b) - t.z() * precision(0, b);
+    p(2, b) = t.y() * precision(0, b) - t.x() * precision(1, b);
+    p.block<3, 1>(3, b) = -2.0 * precision.col(b);
+  }
+  Matrix6d hessian;
+  // Columns of [y]x: (0, z, -y), (-z, 0, x), (y, -x, 0).
+  hessian.col(0) = p.col(1) * y.z() - p.col(2) * y.y();
+  hessian.col(1) = p.col(2) * y.x() - p.col(0) * y.z();
+  hessian.col(2) = p.col(0) * y.y() - p.col(1) * y.x();
+  hessian.rightCols<3>() = -p;
+  return hessian;
+}
+
 /// Evaluates the term for a source mean already moved to the world, y = R p + t.
 inline IcpTerm evaluate_icp_term(const Eigen::Vector3d& q, const Eigen::Vector3d& y,
                                  const Eigen::Matrix3d& precision) {
@@ -140,10 +165,7 @@ inline IcpTerm evaluate_icp_term(const Eigen::Vector3d& q, const Eigen::Vector3d
   const Eigen::Vector3d r = q - y;
   term.energy = r.dot(precision * r);
   term.gradient = icp_gradient(y, r, precision);
-  Eigen::Matrix<double, 3, 6> jacobian;
-  jacobian.leftCols<3>() << 0.0, -y.z(), y.y(), y.z(), 0.0, -y.x(), -y.y(), y.x(), 0.0;
-  jacobian.rightCols<3>() = -Eigen::Matrix3d::Identity();
-  term.hessian = 2.0 * jacobian.transpose() * precision * jacobian;
+  term.hessian = icp_hessian(y, precision);
   return term;
 }
 
