@@ -13,24 +13,51 @@ namespace litamin2::io {
 
 namespace fs = std::filesystem;
 
-std::string read_file_bytes(const std::string& path) {
+namespace {
+
+/// Opens `path` for a whole-file read, positioned at the start; its size in `size`.
+std::ifstream open_whole_file(const std::string& path, std::size_t& size) {
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (ec || !fs::exists(status)) throw IoError(path, "file does not exist");
   if (fs::is_directory(status)) throw IoError(path, "is a directory, expected a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(path, std::string("cannot open for reading: ") + std::strerror(errno));
-  std::string bytes;
   in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  if (size < 0) throw IoError(path, "cannot determine the file size");
+  const std::streamoff end = in.tellg();
+  if (end < 0) throw IoError(path, "cannot determine the file size");
   in.seekg(0, std::ios::beg);
-  bytes.resize(static_cast<std::size_t>(size));
-  if (size > 0 && !in.read(bytes.data(), size)) {
+  size = static_cast<std::size_t>(end);
+  return in;
+}
+
+/// Reads `size` bytes of `in` into `data`.
+void read_whole(std::ifstream& in, const std::string& path, char* data, std::size_t size) {
+  if (size > 0 && !in.read(data, static_cast<std::streamsize>(size))) {
     throw IoError(path, "read error after " + std::to_string(in.gcount()) + " of " +
                             std::to_string(size) + " bytes");
   }
+}
+
+}  // namespace
+
+std::string read_file_bytes(const std::string& path) {
+  std::size_t size = 0;
+  std::ifstream in = open_whole_file(path, size);
+  std::string bytes;
+  bytes.resize(size);
+  read_whole(in, path, bytes.data(), size);
   return bytes;
+}
+
+FileBuffer read_file_buffer(const std::string& path) {
+  std::size_t size = 0;
+  std::ifstream in = open_whole_file(path, size);
+  FileBuffer buffer;
+  buffer.data.reset(new char[size > 0 ? size : 1]);  // default-initialised: not zeroed
+  buffer.size = size;
+  read_whole(in, path, buffer.data.get(), size);
+  return buffer;
 }
 
 void write_file_bytes(const std::string& path, const void* data, std::size_t size) {

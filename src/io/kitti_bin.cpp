@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <string_view>
 #include <vector>
 
 #include "litamin2/io/file_util.hpp"
@@ -20,7 +21,7 @@ namespace litamin2::io {
 namespace {
 
 /// Reads float number `index` of the byte buffer (no alignment requirement).
-float float_at(const std::string& bytes, std::size_t index) {
+float float_at(std::string_view bytes, std::size_t index) {
   float value;
   std::memcpy(&value, bytes.data() + index * sizeof(float), sizeof(float));
   return value;
@@ -36,12 +37,12 @@ bool finite3(float x, float y, float z) {
 constexpr std::size_t kDetectionRecords = 16384;
 
 /// Records of `stride` floats to test: the whole file up to kDetectionRecords.
-std::size_t detection_records(const std::string& bytes, std::size_t stride) {
+std::size_t detection_records(std::string_view bytes, std::size_t stride) {
   return std::min(kDetectionRecords, bytes.size() / (stride * sizeof(float)));
 }
 
 /// Fraction of records that are implausible under a layout with `stride` floats per record.
-double bad_fraction(const std::string& bytes, std::size_t stride) {
+double bad_fraction(std::string_view bytes, std::size_t stride) {
   const std::size_t n = detection_records(bytes, stride);
   if (n == 0) return 0.0;
   std::size_t bad = 0;
@@ -58,27 +59,30 @@ double bad_fraction(const std::string& bytes, std::size_t stride) {
 }
 
 /// Median distance between consecutive finite points under a layout (infinity if undefined).
-double median_step(const std::string& bytes, std::size_t stride) {
+/// The median is taken over the squared distances and its square root returned: the square
+/// root is monotonic, so that is the median of the distances, bit for bit, with one square
+/// root instead of one a record.
+double median_step(std::string_view bytes, std::size_t stride) {
   const std::size_t n = detection_records(bytes, stride);
-  std::vector<double> steps;
-  steps.reserve(n);
+  std::vector<double> squared_steps;
+  squared_steps.reserve(n);
   bool have_prev = false;
   Eigen::Vector3d prev;
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t b = i * stride;
     const Eigen::Vector3d p(float_at(bytes, b), float_at(bytes, b + 1), float_at(bytes, b + 2));
     if (!p.allFinite()) continue;
-    if (have_prev) steps.push_back((p - prev).norm());
+    if (have_prev) squared_steps.push_back((p - prev).squaredNorm());
     prev = p;
     have_prev = true;
   }
-  if (steps.empty()) return std::numeric_limits<double>::infinity();
-  auto mid = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
-  std::nth_element(steps.begin(), mid, steps.end());
-  return *mid;
+  if (squared_steps.empty()) return std::numeric_limits<double>::infinity();
+  auto mid = squared_steps.begin() + static_cast<std::ptrdiff_t>(squared_steps.size() / 2);
+  std::nth_element(squared_steps.begin(), mid, squared_steps.end());
+  return std::sqrt(*mid);
 }
 
-KittiBinLayout detect_layout(const std::string& path, const std::string& bytes) {
+KittiBinLayout detect_layout(const std::string& path, std::string_view bytes) {
   const std::size_t size = bytes.size();
   const bool fits_xyzi = size % 16 == 0;
   const bool fits_xyz = size % 12 == 0;
@@ -119,7 +123,8 @@ void apply_vertical_angle_correction(PointCloud& cloud, double angle_deg) {
 }
 
 PointCloud read_kitti_bin(const std::string& path, const KittiBinOptions& options) {
-  const std::string bytes = read_file_bytes(path);
+  const FileBuffer buffer = read_file_buffer(path);
+  const std::string_view bytes = buffer.view();
   if (bytes.empty()) throw IoError(path, "empty file (0 bytes), not a scan");
   KittiBinLayout layout = options.layout;
   if (layout == KittiBinLayout::kAuto) layout = detect_layout(path, bytes);
@@ -132,20 +137,27 @@ PointCloud read_kitti_bin(const std::string& path, const KittiBinOptions& option
   }
   const std::size_t n = bytes.size() / record;
   PointCloud cloud;
-  cloud.points.reserve(n);
-  if (stride == 4) cloud.intensities.reserve(n);
+  // Sized for every record and cut to the finite ones at the end: a store a point instead of
+  // push_back's capacity check (Eigen's vectors are not zeroed by resize).
+  cloud.points.resize(n);
+  if (stride == 4) cloud.intensities.resize(n);
+  std::size_t kept = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t b = i * stride;
     const Eigen::Vector3f p(float_at(bytes, b), float_at(bytes, b + 1), float_at(bytes, b + 2));
     if (!p.allFinite()) continue;
-    cloud.points.push_back(p);
-    if (stride != 4) continue;
-    const float intensity = float_at(bytes, b + 3);
-    if (!std::isfinite(intensity))
-      throw IoError(path, "point " + std::to_string(i) + ": intensity " +
-                              std::to_string(intensity) + " is not finite");
-    cloud.intensities.push_back(intensity);
+    cloud.points[kept] = p;
+    if (stride == 4) {
+      const float intensity = float_at(bytes, b + 3);
+      if (!std::isfinite(intensity))
+        throw IoError(path, "point " + std::to_string(i) + ": intensity " +
+                                std::to_string(intensity) + " is not finite");
+      cloud.intensities[kept] = intensity;
+    }
+    ++kept;
   }
+  cloud.points.resize(kept);
+  if (stride == 4) cloud.intensities.resize(kept);
   try {
     apply_vertical_angle_correction(cloud, options.vertical_angle_correction_deg);
   } catch (const std::range_error& e) {
