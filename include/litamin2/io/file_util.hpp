@@ -16,7 +16,7 @@ namespace litamin2::io {
 std::string read_file_bytes(const std::string& path);
 
 /// A whole file's bytes in a buffer that is not zeroed before the read (std::string's resize
-/// zeroes it first: for a 2 MB scan that is a memset as long as the copy itself).
+/// zeroes it first: one more pass over a 2 MB scan's memory before the read's copy).
 struct FileBuffer {
   std::unique_ptr<char[]> data;
   std::size_t size = 0;
