@@ -124,7 +124,6 @@ grep -q "$((2 * k)) keyframe(s) of 2 stream(s)" export_b.log || { echo "B lacks 
 cmp a.ply b.ply
 diff -r traj_a traj_b
 [ "$(wc -l < traj_b/car_a_kitti.txt)" -eq "$k" ]
-# The simulated scans go once the test has passed (CI runs on a disk of its own size); a
-# failure keeps them for a look.
+# Passed: the simulated scans go (kept on failure for a look; CI has a disk of its own size).
 rm -rf seq
 echo "identical: $(stat -c %s a.ply)-byte map, $(ls traj_b | wc -l) trajectory files, $((2 * k)) keyframes"

@@ -171,8 +171,7 @@ diff -r live_a live_b > /dev/null && identical_live=yes
 printf 'live graphs: byte-identical %s, largest keyframe position difference %.6f m (bound %s)\n' \
   "$identical_live" "$live_diff" "$max_live_diff_m"
 [ "$(echo "$live_diff <= $max_live_diff_m" | bc -l)" -eq 1 ] || fail "live maps differ by $live_diff m"
-# The simulated scans go once the test has passed (CI runs on a disk of its own size); a
-# failure keeps them for a look.
+# Passed: the simulated scans go (kept on failure for a look; CI has a disk of its own size).
 rm -rf seq
 printf '{"failover_s": %.3f, "lease_s": %s, "keyframes": %d, "live_max_diff_m": %.6f}\n' \
   "$failover_s" "$lease_s" "$((2 * k))" "$live_diff"

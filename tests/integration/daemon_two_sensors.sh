@@ -179,7 +179,6 @@ PY
 python3 check_truth.py front/poses.txt front/calib.txt both_received_car_m.txt 0.05
 python3 check_truth.py front/poses.txt front/calib.txt stops_received_car_m.txt 0.05
 python3 check_truth.py sweep_front/poses.txt sweep_front/calib.txt deskew_received_car_m.txt 0.1
-# The simulated scans (their poses stay) go once the test has passed (CI runs on a disk of its own size); a
-# failure keeps them for a look.
+# Passed: the scans go, their poses stay (kept on failure for a look).
 rm -rf ./*/velodyne ./*/pcd
 echo PASS

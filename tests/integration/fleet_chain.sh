@@ -13,6 +13,5 @@ source "$(dirname "$0")/daemon_netns.sh"
 DEMO_SKIP_BUILD=1 BUILD_DIR=$1 OUT=$2 FRAMES=${FRAMES:-120} DOMAIN=46 MERGE_BOUND=0.5 \
   MAP_ODOM_BOUND=0.5 \
   bash "$3/scripts/demo.sh"
-# The simulated scans go once the test has passed (CI runs on a disk of its own size); a
-# failure keeps them for a look.
+# Passed: the simulated scans go (kept on failure for a look; CI has a disk of its own size).
 rm -rf "$2/fleet"

@@ -198,7 +198,6 @@ echo "{\"loss_percent\": $loss, \"frames\": $frames, \"streams\": ${#streams[@]}
   "\"datagrams_dropped_loss0\": ${result[baseline_dropped]}, \"datagrams_dropped_loss$loss\": ${result[lossy_dropped]}," \
   "\"keyframes_lost_loss${loss}_early_stop\": ${result[lossy_early_stop_lost]:-null}}"
 [ "$failures" -eq 0 ] || { echo "lossy_link FAILED ($failures failure(s))"; exit 1; }
-# The simulated scans go once the test has passed (CI runs on a disk of its own size); a
-# failure keeps them for a look.
+# Passed: the simulated scans go (kept on failure for a look; CI has a disk of its own size).
 rm -rf "$work/fleet"
 echo "lossy_link OK"

@@ -904,7 +904,6 @@ done
 json="${json%, }}"
 echo "$json"
 [ "$failures" -eq 0 ] || { echo "multihost FAILED ($failures failure(s))"; exit 1; }
-# The simulated scans go once the test has passed (CI runs on a disk of its own size); a
-# failure keeps them for a look.
+# Passed: the simulated scans go (kept on failure for a look; CI has a disk of its own size).
 rm -rf "$work/fleet"
 echo "multihost OK"

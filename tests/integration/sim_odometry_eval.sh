@@ -21,7 +21,6 @@ for mode in icp icp+cov; do
   awk -v t="$t" -v r="$r" 'BEGIN { exit !(t != "" && t < 1.0 && r < 1.0) }' \
     || { echo "drift above the regression bound (1 %, 1 deg/100 m)"; exit 1; }
 done
-# The simulated scans go once the test has passed (CI runs on a disk of its own size); a
-# failure keeps them for a look.
+# Passed: the simulated scans go (kept on failure for a look; CI has a disk of its own size).
 rm -rf "$work/seq"
 echo "1 passed, 0 failed"
