@@ -48,7 +48,10 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
   }
   // ICP term, Eq. 3, with its robust weight, Eq. 5.
   const Eigen::Matrix3d precision = combined_precision(target.cov, rotated_cov, config.lambda);
-  IcpTerm icp = evaluate_icp_term(target.mean, y, precision);
+  const Eigen::Vector3d residual = target.mean - y;
+  const double icp_energy = residual.dot(precision * residual);
+  Vector6d gradient = icp_gradient(y, residual, precision);
+  double hessian_weight = 1.0;
   // A plane's normal alone in the gradient (RegistrationConfig::normal_only_ratio, not in the
   // paper); the energy, its weight and the Hessian keep the whole precision. With
   // normal_only_thickness set (off by default), the plane's gradient and Hessian are weighted
@@ -58,30 +61,31 @@ void accumulate_correspondence(const Distribution& source, const Distribution& t
     Eigen::Matrix3d normal_precision = precision;
     Eigen::Vector3d normal;
     if (keep_normal_only(normal_precision, config.normal_only_ratio, &normal)) {
-      icp.gradient = icp_gradient(y, target.mean - y, normal_precision);
+      gradient = icp_gradient(y, residual, normal_precision);
       if (config.normal_only_thickness > 0.0) {
         const double thickness_sq = normal.dot((target.cov + rotated_cov) * normal);
-        const double weight = plane_thickness_weight(thickness_sq, config.normal_only_thickness);
-        icp.gradient *= weight;
-        icp.hessian *= weight;
+        hessian_weight = plane_thickness_weight(thickness_sq, config.normal_only_thickness);
+        gradient *= hessian_weight;
       }
     }
   }
-  const double w_icp = robust_weight(icp.energy, config.sigma_icp);
-  out.cost += w_icp * icp.energy;
-  out.gradient += w_icp * icp.gradient;
-  out.hessian += w_icp * icp.hessian;
+  const double w_icp = robust_weight(icp_energy, config.sigma_icp);
+  out.cost += w_icp * icp_energy;
+  out.gradient += w_icp * gradient;
+  // The Hessian's lower triangle only; evaluate_cost mirrors the sum.
+  add_icp_hessian_lower(out.hessian, y, precision, w_icp * hessian_weight);
   if (config.robust_newton) {
-    add_upper_rank_one(out.robust_curvature, icp.gradient,
-                       robust_weight_curvature(icp.energy, config.sigma_icp));
+    add_upper_rank_one(out.robust_curvature, gradient,
+                       robust_weight_curvature(icp_energy, config.sigma_icp));
   }
   ++out.correspondences;
   if (w_icp >= 0.5) ++out.inliers;
   if (timed) {
     // The same term's derivatives times the source's time and its square (sweep_motion.hpp).
-    timed->gradient += (w_icp * time) * icp.gradient;
-    timed->hessian += (w_icp * time) * icp.hessian;
-    timed->hessian_sq += (w_icp * time * time) * icp.hessian;
+    const Matrix6d hessian = hessian_weight * icp_hessian(y, precision);
+    timed->gradient += (w_icp * time) * gradient;
+    timed->hessian += (w_icp * time) * hessian;
+    timed->hessian_sq += (w_icp * time * time) * hessian;
   }
   if (config.mode != CostMode::kIcpCov) return;
   if (std::min(source.count, target.count) < config.cov_min_points) return;
@@ -213,6 +217,8 @@ CostEvaluation evaluate_cost(const std::vector<Distribution>& source, const Voxe
 
   CostEvaluation total;
   for (const CostEvaluation& part : partial) add_into(total, part);
+  // Only the lower triangle was summed (accumulate_correspondence); the upper is its mirror.
+  total.hessian.triangularView<Eigen::StrictlyUpper>() = total.hessian.transpose();
   if (with_times) {
     *timed = TimeWeightedSums();
     for (const TimeWeightedSums& part : partial_timed) add_into(*timed, part);

@@ -195,6 +195,29 @@ TEST(IcpTerm, TheWrittenOutHessianIsTheDenseProductBitForBit) {
   }
 }
 
+TEST(IcpTerm, TheLowerTriangleSumIsTheWrittenOutHessiansBitForBit) {
+  Random rnd;
+  Matrix6d full = Matrix6d::Zero();
+  Matrix6d lower = Matrix6d::Zero();
+  for (int trial = 0; trial < 200; ++trial) {
+    const IcpCase icp_case = random_icp_case(rnd);
+    const Eigen::Vector3d y = icp_case.pose * icp_case.p;
+    const double weight = rnd.uniform(0.0, 2.0);
+    full += weight * icp_hessian(y, icp_case.precision);
+    add_icp_hessian_lower(lower, y, icp_case.precision, weight);
+  }
+  // The lower triangle is the full sum's, bit for bit; the strictly upper one is left alone.
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j < 6; ++j) {
+      if (i >= j) {
+        EXPECT_EQ(lower(i, j), full(i, j)) << i << "," << j;
+      } else {
+        EXPECT_EQ(lower(i, j), 0.0) << i << "," << j;
+      }
+    }
+  }
+}
+
 TEST(RankOneUpdate, TheWrittenOutUpdateIsEigensBitForBit) {
   Random rnd;
   Matrix6d eigens = Matrix6d::Zero();

@@ -3,6 +3,7 @@
 
 #include "litamin2/core/correspondence_search.hpp"
 #include "litamin2/core/icp_term.hpp"
+#include "litamin2/core/robust_weight.hpp"
 #include "litamin2/core/scan_registration.hpp"
 #include "litamin2/core/so3.hpp"
 #include "litamin2/core/voxel_map.hpp"
@@ -220,6 +221,35 @@ TEST_F(GateTest, MaxIsotropyDropsOnlyRoundCorrespondences) {
     EXPECT_EQ(all.correspondences, flat + round);
     EXPECT_EQ(gated.correspondences, flat);
     EXPECT_LT(gated.cost, all.cost);
+  }
+}
+
+TEST_F(GateTest, TheHessianIsTheSumOfTheTermsWholeHessiansAndSymmetric) {
+  // evaluate_cost sums the ICP terms' lower triangles and mirrors the sum: it must equal the
+  // sum of each term's whole Hessian (weight Eq. 5 times 2 J^T C J, Eq. 3).
+  RegistrationConfig config;
+  config.mode = CostMode::kIcp;
+  config.max_isotropy = 1.0;
+  config.line_gate = 0.0;
+  const CostEvaluation eval = evaluate_cost(source, map, *search, pose, config);
+  Matrix6d expected = Matrix6d::Zero();
+  const double max_distance_sq = voxels.voxel_size * voxels.voxel_size;
+  for (const Distribution& d : source) {
+    const Eigen::Vector3d y = pose * d.mean;
+    const int match = search->nearest(y, max_distance_sq);
+    if (match < 0) continue;
+    const Distribution& target = map.distributions()[match];
+    const Eigen::Matrix3d precision = combined_precision(
+        target.cov, pose.linear() * d.cov * pose.linear().transpose(), config.lambda);
+    const IcpTerm term = evaluate_icp_term(target.mean, y, precision);
+    expected += robust_weight(term.energy, config.sigma_icp) * term.hessian;
+  }
+  ASSERT_GT(expected.norm(), 0.0);
+  EXPECT_LT((eval.hessian - expected).norm(), 1e-12 * expected.norm());
+  for (const CostMode mode : {CostMode::kIcp, CostMode::kIcpCov}) {
+    config.mode = mode;
+    const Matrix6d hessian = evaluate_cost(source, map, *search, pose, config).hessian;
+    EXPECT_EQ(hessian, hessian.transpose());
   }
 }
 
