@@ -1,13 +1,22 @@
 #include "litamin2/core/mean_kdtree.hpp"
 
 #include <algorithm>
+#include <array>
 #include <limits>
+#include <stdexcept>
 
 namespace litamin2 {
 namespace {
 
 /// Points per leaf at most.
 constexpr int kLeafSize = 10;
+
+/// Levels below the root at most. A split leaves at least 1/8 of a node's points on each side
+/// (the midpoint) or halves them (the median), so a node at depth d holds at most (7/8)^d of
+/// the n points, and only nodes of more than kLeafSize points split: d <= 1 + ln(n / 11) /
+/// ln(8 / 7), which is 144 for n = 2^31. The search's stack of far branches holds one entry a
+/// level.
+constexpr int kMaxDepth = 160;
 
 }  // namespace
 
@@ -41,14 +50,15 @@ MeanKdTree::MeanKdTree(const std::vector<Eigen::Vector3d>& points) {
   std::vector<int> order(points.size());
   for (int i = 0; i < n; ++i) order[i] = i;
   nodes_.reserve(2 * static_cast<std::size_t>(n / kLeafSize + 1));
-  if (n > 0) build(order, points, 0, n);
+  if (n > 0) build(order, points, 0, n, 0);
   points_.reserve(points.size());
   for (const int i : order) points_.push_back(points[i]);
   index_ = std::move(order);
 }
 
 int MeanKdTree::build(std::vector<int>& order, const std::vector<Eigen::Vector3d>& points,
-                      int begin, int end) {
+                      int begin, int end, int depth) {
+  if (depth > kMaxDepth) throw std::logic_error("MeanKdTree: deeper than its bound");
   const int id = static_cast<int>(nodes_.size());
   nodes_.push_back(Node{begin, end});
   if (end - begin <= kLeafSize) return id;
@@ -80,8 +90,8 @@ int MeanKdTree::build(std::vector<int>& order, const std::vector<Eigen::Vector3d
                      [&](int a, int b) { return points[a](dim) < points[b](dim); });
     split = points[order[mid]](dim);
   }
-  const int left = build(order, points, begin, mid);
-  const int right = build(order, points, mid, end);
+  const int left = build(order, points, begin, mid, depth + 1);
+  const int right = build(order, points, mid, end, depth + 1);
   Node& node = nodes_[id];
   node.left = left;
   node.right = right;
@@ -90,27 +100,41 @@ int MeanKdTree::build(std::vector<int>& order, const std::vector<Eigen::Vector3d
   return id;
 }
 
-void MeanKdTree::search(int node_id, const Eigen::Vector3d& query, Best& best) const {
-  const Node& node = nodes_[node_id];
-  if (node.left < 0) {
+void MeanKdTree::search(const Eigen::Vector3d& query, Best& best) const {
+  // Depth first, nearer child first, as a recursion would visit the nodes, with the farther
+  // children on a stack: a far child is entered only if the distance to its side of the split
+  // is still below the worst kept distance once everything pushed after it is done.
+  struct FarBranch {
+    int node;
+    double distance_sq;  // along the split dimension: a lower bound on its points' distance
+  };
+  std::array<FarBranch, kMaxDepth + 1> pending;
+  int top = 0;
+  int node_id = 0;
+  for (;;) {
+    const Node& node = nodes_[node_id];
+    if (node.left >= 0) {
+      const double diff = query(node.dim) - node.split;
+      pending[top++] = {diff < 0.0 ? node.right : node.left, diff * diff};
+      node_id = diff < 0.0 ? node.left : node.right;
+      continue;
+    }
     for (int k = node.begin; k < node.end; ++k) {
       best.add(squared_distance_xyz(query, points_[k]), k);
     }
-    return;
+    do {
+      if (top == 0) return;
+      --top;
+    } while (!(pending[top].distance_sq < best.worst()));
+    node_id = pending[top].node;
   }
-  // Points on the far side are at least |diff| away along the split dimension.
-  const double diff = query(node.dim) - node.split;
-  const int near = diff < 0.0 ? node.left : node.right;
-  const int far = diff < 0.0 ? node.right : node.left;
-  search(near, query, best);
-  if (diff * diff < best.worst()) search(far, query, best);
 }
 
 int MeanKdTree::nearest(const Eigen::Vector3d& query, double max_distance_sq,
                         double& distance_sq) const {
   if (nodes_.empty()) return -1;
   Best best(1, max_distance_sq);
-  search(0, query, best);
+  search(query, best);
   if (best.indices[0] < 0) return -1;
   distance_sq = best.distances_sq[0];
   return index_[best.indices[0]];
@@ -119,7 +143,7 @@ int MeanKdTree::nearest(const Eigen::Vector3d& query, double max_distance_sq,
 void MeanKdTree::nearest_two(const Eigen::Vector3d& query, int indices[2],
                              double distances_sq[2]) const {
   Best best(2, std::numeric_limits<double>::infinity());
-  if (!nodes_.empty()) search(0, query, best);
+  if (!nodes_.empty()) search(query, best);
   for (int i = 0; i < 2; ++i) {
     indices[i] = best.indices[i] < 0 ? -1 : index_[best.indices[i]];
     distances_sq[i] = best.distances_sq[i];

@@ -45,9 +45,9 @@ class MeanKdTree {
     double split = 0.0;         // left: coordinate <= split; right: >= split
   };
   struct Best;
-  int build(std::vector<int>& order, const std::vector<Eigen::Vector3d>& points, int begin,
-            int end);
-  void search(int node, const Eigen::Vector3d& query, Best& best) const;
+  int build(std::vector<int>& order, const std::vector<Eigen::Vector3d>& points, int begin, int end,
+            int depth);
+  void search(const Eigen::Vector3d& query, Best& best) const;
 
   std::vector<Node> nodes_;
   std::vector<Eigen::Vector3d> points_;  // in tree order
