@@ -51,7 +51,10 @@ namespace sse2_voting {
 /// (zx, zy, zz, z), where the origin is the run's first point (as an offset from the voxel
 /// centre, w lane 0).
 struct Run {
-  std::uint32_t key = kInvalidKey;
+  /// Before the first point: neither a voxel's key (below 2^30) nor kInvalidKey.
+  static constexpr std::uint32_t kNoRun = kInvalidKey - 1;
+  static_assert(3 * kLocalBits < 32 && (1u << (3 * kLocalBits)) <= kNoRun);
+  std::uint32_t key = kNoRun;
   int count = 0;
   __m128 origin = _mm_setzero_ps();
   __m128 sum_x = _mm_setzero_ps(), sum_y = _mm_setzero_ps(), sum_z = _mm_setzero_ps();
@@ -142,16 +145,16 @@ void vote_points_sse2(const Eigen::Vector3f* begin, const Eigen::Vector3f* end,
     } else {
       key_block_sse2(block, count, frame, keys, offsets);
     }
-    // Phase B: sum runs of same-voxel points.
+    // Phase B: sum runs of same-voxel points. A point of the run's voxel takes one test; a
+    // point outside the range limits has kInvalidKey, which no run has.
     for (int i = 0; i < count; ++i) {
       const std::uint32_t key = keys[i];
-      if (key == kInvalidKey) continue;
-      const __m128 offset = _mm_load_ps(offsets[i]);
-      if (key != run.key || run.count == 0) {
+      if (key != run.key) {
+        if (key == kInvalidKey) continue;
         flush(run);
-        run.start(key, offset);
+        run.start(key, _mm_load_ps(offsets[i]));
       }
-      run.add(offset);
+      run.add(_mm_load_ps(offsets[i]));
     }
   }
   flush(run);
