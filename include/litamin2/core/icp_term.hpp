@@ -133,13 +133,10 @@ inline Eigen::Matrix<double, 6, 1> icp_gradient(const Eigen::Vector3d& y, const 
   return gradient;
 }
 
-/// The Gauss-Newton Hessian 2 J^T C J of the term with precision C, for y = R p + t, with
-/// J = [ [y]x  -I ] written out: P = 2 J^T C is ( 2 [y]x^T C ; -2 C ) and 2 J^T C J is
-/// ( P [y]x , -P ). Each entry is a sum of two products (the zeros of [y]x and I left out) or
-/// a negation, so it equals the dense product's bit for bit (adding a zero product is exact and
-/// a sum of two terms is the same in either order; scaling by 2 is exact); it costs about a
-/// third of the dense product's operations.
-inline Matrix6d icp_hessian(const Eigen::Vector3d& y, const Eigen::Matrix3d& precision) {
+/// P = 2 J^T C = ( 2 [y]x^T C ; -2 C ) for J = [ [y]x  -I ], written out: the left factor of
+/// icp_hessian and add_icp_hessian_lower.
+inline Eigen::Matrix<double, 6, 3> icp_hessian_factor(const Eigen::Vector3d& y,
+                                                      const Eigen::Matrix3d& precision) {
   const Eigen::Vector3d t = 2.0 * y;
   Eigen::Matrix<double, 6, 3> p;
   for (int b = 0; b < 3; ++b) {
@@ -149,6 +146,17 @@ inline Matrix6d icp_hessian(const Eigen::Vector3d& y, const Eigen::Matrix3d& pre
     p(2, b) = t.y() * precision(0, b) - t.x() * precision(1, b);
     p.block<3, 1>(3, b) = -2.0 * precision.col(b);
   }
+  return p;
+}
+
+/// The Gauss-Newton Hessian 2 J^T C J of the term with precision C, for y = R p + t, with
+/// J = [ [y]x  -I ] written out: with P = icp_hessian_factor, 2 J^T C J is ( P [y]x , -P ).
+/// Each entry is a sum of two products (the zeros of [y]x and I left out) or a negation, so it
+/// equals the dense product's bit for bit (adding a zero product is exact and a sum of two
+/// terms is the same in either order; scaling by 2 is exact); it costs about a third of the
+/// dense product's operations.
+inline Matrix6d icp_hessian(const Eigen::Vector3d& y, const Eigen::Matrix3d& precision) {
+  const Eigen::Matrix<double, 6, 3> p = icp_hessian_factor(y, precision);
   Matrix6d hessian;
   // Columns of [y]x: (0, z, -y), (-z, 0, x), (y, -x, 0).
   hessian.col(0) = p.col(1) * y.z() - p.col(2) * y.y();
@@ -165,14 +173,7 @@ inline Matrix6d icp_hessian(const Eigen::Vector3d& y, const Eigen::Matrix3d& pre
 /// of the 36 entries' work.
 inline void add_icp_hessian_lower(Matrix6d& sum, const Eigen::Vector3d& y,
                                   const Eigen::Matrix3d& precision, double weight) {
-  const Eigen::Vector3d t = 2.0 * y;
-  Eigen::Matrix<double, 6, 3> p;
-  for (int b = 0; b < 3; ++b) {
-    p(0, b) = t.z() * precision(1, b) - t.y() * precision(2, b);
-    p(1, b) = t.x() * precision(2, b) - t.z() * precision(0, b);
-    p(2, b) = t.y() * precision(0, b) - t.x() * precision(1, b);
-    p.block<3, 1>(3, b) = -2.0 * precision.col(b);
-  }
+  const Eigen::Matrix<double, 6, 3> p = icp_hessian_factor(y, precision);
   // icp_hessian's columns, from the diagonal down.
   sum.col(0) += weight * (p.col(1) * y.z() - p.col(2) * y.y());
   sum.block<5, 1>(1, 1) += weight * (p.block<5, 1>(1, 2) * y.x() - p.block<5, 1>(1, 0) * y.z());
