@@ -21,11 +21,13 @@ constexpr int kMaxDepth = 160;
 }  // namespace
 
 /// The `count` (1 or 2) best points so far; a point replaces one only when strictly nearer.
+/// The count is a template argument: the leaf scan's tests on it are decided at compile time.
+template <int count>
 struct MeanKdTree::Best {
-  int count;
+  static_assert(count == 1 || count == 2);
   int indices[2] = {-1, -1};
   double distances_sq[2];
-  Best(int count, double bound) : count(count) {
+  explicit Best(double bound) {
     distances_sq[0] = count == 1 ? bound : std::numeric_limits<double>::infinity();
     distances_sq[1] = count == 2 ? bound : std::numeric_limits<double>::infinity();
   }
@@ -100,7 +102,8 @@ int MeanKdTree::build(std::vector<int>& order, const std::vector<Eigen::Vector3d
   return id;
 }
 
-void MeanKdTree::search(const Eigen::Vector3d& query, Best& best) const {
+template <int count>
+void MeanKdTree::search(const Eigen::Vector3d& query, Best<count>& best) const {
   // Depth first, nearer child first, as a recursion would visit the nodes, with the farther
   // children on a stack: a far child is entered only if the distance to its side of the split
   // is still below the worst kept distance once everything pushed after it is done.
@@ -133,7 +136,7 @@ void MeanKdTree::search(const Eigen::Vector3d& query, Best& best) const {
 int MeanKdTree::nearest(const Eigen::Vector3d& query, double max_distance_sq,
                         double& distance_sq) const {
   if (nodes_.empty()) return -1;
-  Best best(1, max_distance_sq);
+  Best<1> best(max_distance_sq);
   search(query, best);
   if (best.indices[0] < 0) return -1;
   distance_sq = best.distances_sq[0];
@@ -142,7 +145,7 @@ int MeanKdTree::nearest(const Eigen::Vector3d& query, double max_distance_sq,
 
 void MeanKdTree::nearest_two(const Eigen::Vector3d& query, int indices[2],
                              double distances_sq[2]) const {
-  Best best(2, std::numeric_limits<double>::infinity());
+  Best<2> best(std::numeric_limits<double>::infinity());
   if (!nodes_.empty()) search(query, best);
   for (int i = 0; i < 2; ++i) {
     indices[i] = best.indices[i] < 0 ? -1 : index_[best.indices[i]];

@@ -44,10 +44,12 @@ class MeanKdTree {
     int dim = 0;                // split dimension
     double split = 0.0;         // left: coordinate <= split; right: >= split
   };
+  template <int count>
   struct Best;
   int build(std::vector<int>& order, const std::vector<Eigen::Vector3d>& points, int begin, int end,
             int depth);
-  void search(const Eigen::Vector3d& query, Best& best) const;
+  template <int count>
+  void search(const Eigen::Vector3d& query, Best<count>& best) const;
 
   std::vector<Node> nodes_;
   std::vector<Eigen::Vector3d> points_;  // in tree order
